@@ -1,0 +1,79 @@
+//! Generates the PETSc FFI bindings with bindgen from Debian's PETSc 3.18 (see `spec/stack.md` §3).
+//!
+//! Only runs when the `native` feature is on. Refuses to build against a PETSc with 64-bit indices or
+//! non-double scalars, because the safe layer in `src/linalg/petsc.rs` assumes `PetscInt = i32` and
+//! `PetscScalar = f64`.
+
+use std::env;
+use std::path::PathBuf;
+
+fn main() {
+    println!("cargo:rerun-if-changed=build.rs");
+    if env::var_os("CARGO_FEATURE_NATIVE").is_none() {
+        return;
+    }
+    let petsc = pkg_config::Config::new()
+        .atleast_version("3.18")
+        .probe("PETSc")
+        .unwrap_or_else(|e| {
+            panic!(
+                "PETSc >= 3.18 not found by pkg-config ({e}). Install it with\n  \
+                 apt-get install libpetsc-real-dev libopenmpi-dev openmpi-bin libhdf5-openmpi-dev libmetis-dev libclang-dev pkg-config\n\
+                 or build without the native stack: cargo build --no-default-features"
+            )
+        });
+    let mpi = pkg_config::Config::new()
+        .cargo_metadata(false)
+        .probe("ompi-c")
+        .expect("OpenMPI's pkg-config file ompi-c not found (apt-get install libopenmpi-dev)");
+
+    let mut includes: Vec<PathBuf> = petsc.include_paths.clone();
+    includes.extend(mpi.include_paths.iter().cloned());
+
+    check_petscconf(&includes);
+
+    let out = PathBuf::from(env::var("OUT_DIR").expect("OUT_DIR"));
+    let header = out.join("petsc_wrapper.h");
+    std::fs::write(&header, "#include <petscsnes.h>\n").expect("write wrapper header");
+
+    let mut builder = bindgen::Builder::default()
+        .header(header.to_string_lossy())
+        .allowlist_function("^(Petsc|Vec|Mat|KSP|PC|SNES|IS|ISLocalToGlobalMapping)[A-Za-z0-9_]*")
+        .allowlist_type("^(Petsc|Vec|Mat|KSP|PC|SNES|IS|InsertMode|NormType|ScatterMode)[A-Za-z0-9_]*")
+        .allowlist_var("^(PETSC_|KSP|PC|MAT|VEC|SNES)[A-Za-z0-9_]*")
+        .blocklist_type("^(MPI_|ompi_).*")
+        .raw_line("#[allow(unused_imports)] use mpi::ffi::*;")
+        .prepend_enum_name(false)
+        .layout_tests(false)
+        .generate_comments(false)
+        .parse_callbacks(Box::new(bindgen::CargoCallbacks::new()));
+    for dir in &includes {
+        builder = builder.clang_arg(format!("-I{}", dir.display()));
+    }
+    builder
+        .generate()
+        .expect("bindgen failed on petscsnes.h")
+        .write_to_file(out.join("petsc_bindings.rs"))
+        .expect("write petsc_bindings.rs");
+}
+
+/// Reads `petscconf.h` and refuses 64-bit indices or non-double scalars.
+fn check_petscconf(includes: &[PathBuf]) {
+    for dir in includes {
+        let conf = dir.join("petscconf.h");
+        if let Ok(text) = std::fs::read_to_string(&conf) {
+            println!("cargo:rerun-if-changed={}", conf.display());
+            if text.contains("#define PETSC_USE_64BIT_INDICES") {
+                panic!(
+                    "{}: PETSc built with 64-bit indices; cfrd needs 32-bit PetscInt",
+                    conf.display()
+                );
+            }
+            if !text.contains("#define PETSC_USE_REAL_DOUBLE") {
+                panic!("{}: PETSc must use real double scalars", conf.display());
+            }
+            return;
+        }
+    }
+    panic!("petscconf.h not found in the PETSc include paths {includes:?}");
+}

@@ -1,0 +1,1 @@
+//! Mesh partitioning for cfrd.

@@ -1,0 +1,5 @@
+//! Element kernels: shape functions, quadrature and the element routines.
+
+pub mod hex8;
+pub mod quadrature;
+pub mod shape;

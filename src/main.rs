@@ -1,0 +1,5 @@
+//! The `cfrd` command line.
+
+fn main() {
+    println!("cfrd {}", env!("CARGO_PKG_VERSION"));
+}

@@ -1,0 +1,125 @@
+//! Constitutive library: solid models at a Gauss point and interface laws at an interface point.
+//!
+//! Design (`spec/style.md` G.3): parameters, model and state are three separate things.
+//! Parameters are serde data validated at load ([`crate::error::ParamError`]); a model is built
+//! from them and is immutable; the state is plain, serializable data. `update` is **pure**: it
+//! reads the last *committed* state and the *total step* increment and returns a new trial state,
+//! the tangent and the kind of tangent (spec §8.1). The framework owns commit/revert.
+//!
+//! Units at the model boundary are SI (Pa, m). Models written in kPa in the spec convert once,
+//! at this boundary.
+
+use crate::error::MaterialError;
+use crate::tensor::{Local3, Strain6, Stress6, Tangent3, Tangent6};
+use serde::{de::DeserializeOwned, Serialize};
+
+pub mod elastic;
+pub mod gp_integrator;
+pub mod interface_gp;
+pub mod interface_hyperbolic;
+pub mod interface_mc;
+pub mod joint;
+pub mod rockfill_gp;
+
+/// Which tangent an update returns (cf. MOOSE `TangentCalculationMethod`, spec §8.5).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum TangentKind {
+    /// The elastic operator D^e (elastic step, or a fallback).
+    Elastic,
+    /// The continuum elasto-plastic operator D^ep at the end state (spec eqs. (R16), (I19)).
+    Continuum,
+    /// The algorithmic (consistent) tangent of the discrete update (spec §8.3, §8.5).
+    Consistent,
+    /// A secant operator (piecewise-linear laws, spec §6.1 (J3)).
+    Secant,
+}
+
+/// Result of a solid update.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SolidUpdate<S> {
+    /// The new trial state (holds the stress).
+    pub state: S,
+    /// Tangent dσ/dε.
+    pub tangent: Tangent6,
+    /// Which tangent `tangent` is.
+    pub kind: TangentKind,
+    /// Number of accepted substeps used (1 for closed-form updates).
+    pub substeps: u32,
+}
+
+/// Result of an interface update.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InterfaceUpdate<S> {
+    /// The new trial state (holds the traction).
+    pub state: S,
+    /// Tangent dT/dδ in the local frame `[s, a, n]`, Pa/m.
+    pub tangent: Tangent3,
+    /// Which tangent `tangent` is.
+    pub kind: TangentKind,
+    /// Number of accepted substeps used (1 for closed-form updates).
+    pub substeps: u32,
+}
+
+/// Small-strain solid model at one Gauss point. Immutable after construction.
+pub trait SolidModel: Send + Sync {
+    /// Integration-point state (stress and internal variables).
+    type State: Clone + PartialEq + core::fmt::Debug + Serialize + DeserializeOwned + Send + Sync;
+
+    /// Whether the tangent is symmetric (false for the non-associated GP model).
+    fn symmetric_tangent(&self) -> bool;
+
+    /// State of a point that starts at stress `sigma0` (Pa, tension positive), e.g. at activation.
+    fn init_state(&self, sigma0: &Stress6) -> Result<Self::State, MaterialError>;
+
+    /// σ_{n+1}, D_{n+1}, κ_{n+1} = f(κ_n, Δε): integrates from the committed state `prev`
+    /// with the total step strain increment `d_eps` (spec §8.1).
+    fn update(&self, prev: &Self::State, d_eps: &Strain6) -> Result<SolidUpdate<Self::State>, MaterialError>;
+
+    /// The stress held by a state (Pa, tension positive).
+    fn stress(state: &Self::State) -> Stress6;
+}
+
+/// Displacement-jump (traction–separation) law of an interface or joint point, in the local
+/// frame `[s, a, n]` (spec §5.2).
+///
+/// * jump δ = (δ_s, δ_a, δ_n) in m: cushion (face A) relative to slab (face B); δ_n > 0 opens;
+/// * traction T = (τ_s, τ_a, t_n) in Pa, work-conjugate to δ: t_n = −σ_n is **tension positive**
+///   (σ_n, the compression-positive normal stress of the spec, is `-T[2]`).
+pub trait InterfaceModel: Send + Sync {
+    /// Interface-point state (traction, internal variables, opening memory).
+    type State: Clone + PartialEq + core::fmt::Debug + Serialize + DeserializeOwned + Send + Sync;
+
+    /// Whether the tangent is symmetric.
+    fn symmetric_tangent(&self) -> bool;
+
+    /// State at activation under a compressive normal stress `sigma_n0` ≥ 0 (Pa) and no shear.
+    fn init_state(&self, sigma_n0: f64) -> Result<Self::State, MaterialError>;
+
+    /// Integrates from the committed state `prev` with the total step jump increment `d_jump`.
+    fn update(
+        &self,
+        prev: &Self::State,
+        d_jump: &Local3,
+    ) -> Result<InterfaceUpdate<Self::State>, MaterialError>;
+
+    /// The traction held by a state, T = (τ_s, τ_a, t_n), Pa.
+    fn traction(state: &Self::State) -> Local3;
+
+    /// Output quantities of a state (slip, normal deformation without opening, opening).
+    fn outputs(state: &Self::State) -> InterfaceOutputs;
+}
+
+/// What an interface point reports (the seed's Figs. 10, 11, 15, 16).
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
+pub struct InterfaceOutputs {
+    /// Accumulated shear displacement (s, a) of the material (m), opening excluded.
+    pub shear: [f64; 2],
+    /// Normal deformation of the material, closure positive (m), opening excluded (spec §2.12).
+    pub normal: f64,
+    /// Current opening (gap) ≥ 0 (m).
+    pub opening: f64,
+    /// Whether the point is open.
+    pub open: bool,
+    /// Whether the point is slipping / on the plastic branch in its last update.
+    pub plastic: bool,
+}
