@@ -17,6 +17,14 @@
 pub mod conventions;
 pub mod element;
 pub mod error;
+#[cfg(feature = "native")]
+pub mod linalg;
 pub mod material;
 pub mod mesh;
+#[cfg(feature = "native")]
+pub mod parallel;
+#[cfg(feature = "native")]
+pub mod run;
+pub mod scene;
+pub mod solver;
 pub mod tensor;

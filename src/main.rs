@@ -1,5 +1,128 @@
-//! The `cfrd` command line.
+//! The `cfrd` command line: a thin layer that parses arguments and calls the library.
 
-fn main() {
-    println!("cfrd {}", env!("CARGO_PKG_VERSION"));
+use clap::{Parser, Subcommand};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+/// cfrd: parallel finite-element analysis of concrete-faced rockfill dams.
+#[derive(Parser, Debug)]
+#[command(version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Run a scene (the embedded default scene when none is given). Run it under `mpirun -n N`.
+    /// Single-dash words such as `-ksp_type gmres` are PETSc options; they override the scene's.
+    Run {
+        /// Scene file (YAML).
+        scene: Option<PathBuf>,
+        /// Output directory (overrides the scene's `output.dir`).
+        #[arg(short = 'o', long = "out")]
+        out: Option<PathBuf>,
+        /// Print nothing but errors.
+        #[arg(short, long)]
+        quiet: bool,
+    },
+    /// Validate a scene (YAML, mesh, cross-references) without solving.
+    Check {
+        /// Scene file (YAML).
+        scene: PathBuf,
+    },
+    /// Print the JSON Schema of the scene format.
+    Schema,
+}
+
+/// Splits PETSc options (`-word` with more than one letter after a single dash, plus its value
+/// when the next argument is not an option and not a YAML file) from cfrd's own arguments.
+fn split_petsc_options(args: Vec<String>) -> (Vec<String>, Vec<String>) {
+    let is_petsc = |a: &str| {
+        a.len() > 2 && a.starts_with('-') && !a.starts_with("--") && a.as_bytes()[1].is_ascii_alphabetic()
+    };
+    let (mut own, mut petsc) = (Vec::new(), Vec::new());
+    let mut it = args.into_iter().peekable();
+    while let Some(a) = it.next() {
+        if is_petsc(&a) {
+            petsc.push(a);
+            if let Some(next) = it.peek() {
+                let yaml = next.ends_with(".yaml") || next.ends_with(".yml");
+                if !next.starts_with('-') && !yaml {
+                    petsc.push(it.next().expect("peeked"));
+                }
+            }
+        } else {
+            own.push(a);
+        }
+    }
+    (own, petsc)
+}
+
+fn main() -> ExitCode {
+    let (args, petsc) = split_petsc_options(std::env::args().collect());
+    let cli = Cli::parse_from(args);
+    match cli.command {
+        Command::Schema => {
+            let schema = schemars::schema_for!(cfrd::scene::SceneFile);
+            println!(
+                "{}",
+                serde_json::to_string_pretty(&schema).expect("schema serializes")
+            );
+            ExitCode::SUCCESS
+        }
+        Command::Check { scene } => with_mpi(|world| {
+            let s = cfrd::run::load_scene(world, Some(&scene))?;
+            if mpi::topology::Communicator::rank(world) == 0 {
+                println!(
+                    "{}: ok ({} nodes, {} elements, {} blocks, {} fixed DOFs, {} load terms)",
+                    scene.display(),
+                    s.mesh.num_nodes(),
+                    s.mesh.elements.len(),
+                    s.mesh.blocks.len(),
+                    s.fixed.len(),
+                    s.terms.len()
+                );
+            }
+            Ok(())
+        }),
+        Command::Run { scene, out, quiet } => with_mpi(|world| {
+            let opts = cfrd::run::RunOptions {
+                scene,
+                out_dir: out,
+                petsc_options: petsc,
+                verbose: !quiet,
+            };
+            let summary = cfrd::run::run(world, &opts)?;
+            if mpi::topology::Communicator::rank(world) == 0 && !quiet {
+                println!("{}", serde_json::to_string_pretty(&summary).expect("json"));
+            }
+            Ok(())
+        }),
+    }
+}
+
+/// Initializes MPI, installs the abort-on-panic hook, runs `f`, and maps failures to exit codes
+/// (rank 0 prints the message).
+fn with_mpi(
+    f: impl FnOnce(&mpi::topology::SimpleCommunicator) -> Result<(), cfrd::run::RunFailure>,
+) -> ExitCode {
+    let Some(universe) = mpi::initialize() else {
+        eprintln!("error: MPI could not be initialized");
+        return ExitCode::from(1);
+    };
+    cfrd::parallel::install_panic_hook();
+    let world = universe.world();
+    let rank = mpi::topology::Communicator::rank(&world);
+    let code = match f(&world) {
+        Ok(()) => 0,
+        Err(e) => {
+            if rank == 0 {
+                eprintln!("error: {}", e.message);
+            }
+            e.code
+        }
+    };
+    drop(universe);
+    ExitCode::from(code as u8)
 }

@@ -1,1 +1,380 @@
 //! Mesh partitioning for cfrd.
+//!
+//! * [`partition_elements`]: k-way partition of the element dual graph with METIS (feature
+//!   `metis`). Zero-thickness interface and joint cells are ordinary cells here: they share
+//!   their 4 face nodes with the volume cell on each side, so with `ncommon = 3` they are
+//!   adjacent to both, and METIS keeps them cheap to cut. Whatever the cut, the rank that owns
+//!   such a cell sees both faces, because every rank gets the nodes of the cells it owns as
+//!   owned or ghost nodes ([`Partition::ghost_nodes`]).
+//! * [`Partition`]: element ownership, node ownership (the lowest rank among the cells that
+//!   touch the node), owned and ghost lists, and the rank-count-independent DOF numbering.
+//! * [`PartitionFile`]: the file `cfrd partition` writes and `cfrd run` reads (JSON).
+//!
+//! Everything is deterministic: METIS runs once (on rank 0 in a parallel run) with fixed
+//! options, and all lists are sorted by global input index.
+
+use serde::{Deserialize, Serialize};
+use thiserror::Error;
+
+/// Partitioning failures.
+#[derive(Debug, Error)]
+pub enum PartitionError {
+    /// METIS returned an error.
+    #[error("METIS failed: {0}")]
+    Metis(String),
+    /// The partition does not fit the mesh.
+    #[error("partition file {path}: {reason}")]
+    Mismatch {
+        /// File path.
+        path: String,
+        /// What does not match.
+        reason: String,
+    },
+    /// Reading or writing the partition file failed.
+    #[error("partition file {path}: {source}")]
+    Io {
+        /// File path.
+        path: String,
+        /// Underlying error.
+        source: std::io::Error,
+    },
+    /// The partition file is not valid JSON of the expected format.
+    #[error("partition file {path}: {reason}")]
+    Format {
+        /// File path.
+        path: String,
+        /// Parser message.
+        reason: String,
+    },
+}
+
+/// Cells as a CSR list: the nodes of cell `c` are `cell_nodes[cell_ptr[c]..cell_ptr[c + 1]]`.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct Cells {
+    /// Offsets, length = number of cells + 1.
+    pub cell_ptr: Vec<usize>,
+    /// Node indices.
+    pub cell_nodes: Vec<u32>,
+}
+
+impl Cells {
+    /// Number of cells.
+    pub fn len(&self) -> usize {
+        self.cell_ptr.len().saturating_sub(1)
+    }
+    /// Whether there are no cells.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+    /// Nodes of cell `c`.
+    pub fn nodes(&self, c: usize) -> &[u32] {
+        &self.cell_nodes[self.cell_ptr[c]..self.cell_ptr[c + 1]]
+    }
+    /// Appends a cell.
+    pub fn push(&mut self, nodes: &[u32]) {
+        if self.cell_ptr.is_empty() {
+            self.cell_ptr.push(0);
+        }
+        self.cell_nodes.extend_from_slice(nodes);
+        self.cell_ptr.push(self.cell_nodes.len());
+    }
+}
+
+/// Partitions the cells into `nparts` parts with METIS k-way on the dual graph (cells that
+/// share at least 3 nodes, i.e. a face, are neighbours). Returns the part of every cell.
+#[cfg(feature = "metis")]
+pub fn partition_elements(cells: &Cells, n_nodes: usize, nparts: usize) -> Result<Vec<u32>, PartitionError> {
+    if nparts <= 1 || cells.len() <= 1 {
+        return Ok(vec![0; cells.len()]);
+    }
+    let eptr: Vec<metis::Idx> = cells.cell_ptr.iter().map(|&v| v as metis::Idx).collect();
+    let eind: Vec<metis::Idx> = cells.cell_nodes.iter().map(|&v| v as metis::Idx).collect();
+    let _ = n_nodes;
+    let dual = metis::mesh_to_dual(&eptr, &eind, 3).map_err(|e| PartitionError::Metis(format!("{e:?}")))?;
+    let mut part = vec![0 as metis::Idx; cells.len()];
+    metis::Graph::new(1, nparts as metis::Idx, dual.xadj(), dual.adjncy())
+        .map_err(|e| PartitionError::Metis(format!("{e:?}")))?
+        .part_kway(&mut part)
+        .map_err(|e| PartitionError::Metis(format!("{e:?}")))?;
+    Ok(part.into_iter().map(|p| p as u32).collect())
+}
+
+/// Ownership of cells and nodes on every rank, derived from a cell partition.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Partition {
+    /// Number of parts (ranks).
+    pub nparts: usize,
+    /// Part of every cell.
+    pub cell_part: Vec<u32>,
+    /// Owner of every node: the lowest part among the cells that touch it (nodes that no cell
+    /// touches belong to part 0).
+    pub node_owner: Vec<u32>,
+    /// Position of every node in the partition-ordered numbering: nodes sorted by (owner, input
+    /// index). DOF `3·dof_node[n] + c` is component `c` of node `n`. Part `r` owns the
+    /// contiguous range `node_offsets[r]..node_offsets[r+1]`.
+    pub dof_node: Vec<u32>,
+    /// Start of each part's node range in the partition-ordered numbering (length nparts + 1).
+    pub node_offsets: Vec<usize>,
+}
+
+impl Partition {
+    /// Builds ownership from the part of every cell.
+    pub fn new(cells: &Cells, n_nodes: usize, nparts: usize, cell_part: Vec<u32>) -> Partition {
+        assert_eq!(cell_part.len(), cells.len());
+        let mut node_owner = vec![u32::MAX; n_nodes];
+        for c in 0..cells.len() {
+            for &n in cells.nodes(c) {
+                let o = &mut node_owner[n as usize];
+                *o = (*o).min(cell_part[c]);
+            }
+        }
+        for o in node_owner.iter_mut() {
+            if *o == u32::MAX {
+                *o = 0;
+            }
+        }
+        let mut counts = vec![0usize; nparts + 1];
+        for &o in &node_owner {
+            counts[o as usize + 1] += 1;
+        }
+        for r in 0..nparts {
+            counts[r + 1] += counts[r];
+        }
+        let node_offsets = counts.clone();
+        let mut next = counts;
+        let mut dof_node = vec![0u32; n_nodes];
+        for (n, &o) in node_owner.iter().enumerate() {
+            dof_node[n] = next[o as usize] as u32;
+            next[o as usize] += 1;
+        }
+        Partition {
+            nparts,
+            cell_part,
+            node_owner,
+            dof_node,
+            node_offsets,
+        }
+    }
+
+    /// Cells owned by `rank`, in input order.
+    pub fn owned_cells(&self, rank: usize) -> Vec<u32> {
+        (0..self.cell_part.len() as u32)
+            .filter(|&c| self.cell_part[c as usize] == rank as u32)
+            .collect()
+    }
+
+    /// Nodes owned by `rank`, in input order (which is also their partition order).
+    pub fn owned_nodes(&self, rank: usize) -> Vec<u32> {
+        (0..self.node_owner.len() as u32)
+            .filter(|&n| self.node_owner[n as usize] == rank as u32)
+            .collect()
+    }
+
+    /// Nodes that cells owned by `rank` touch but another rank owns (sorted, unique).
+    pub fn ghost_nodes(&self, cells: &Cells, rank: usize) -> Vec<u32> {
+        let mut g: Vec<u32> = (0..cells.len())
+            .filter(|&c| self.cell_part[c] == rank as u32)
+            .flat_map(|c| cells.nodes(c).iter().copied())
+            .filter(|&n| self.node_owner[n as usize] != rank as u32)
+            .collect();
+        g.sort_unstable();
+        g.dedup();
+        g
+    }
+
+    /// Number of cells cut by the partition (edges of the node-sharing graph are not counted;
+    /// this is the number of cells having at least one node owned elsewhere), for reports.
+    pub fn boundary_cells(&self, cells: &Cells) -> usize {
+        (0..cells.len())
+            .filter(|&c| {
+                cells
+                    .nodes(c)
+                    .iter()
+                    .any(|&n| self.node_owner[n as usize] != self.cell_part[c])
+            })
+            .count()
+    }
+}
+
+/// What `cfrd partition` writes: the cell partition of one mesh for a given rank count.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PartitionFile {
+    /// Always `"cfrd-partition"`.
+    pub format: String,
+    /// Format version (1).
+    pub version: u32,
+    /// Number of parts.
+    pub nparts: usize,
+    /// Number of cells of the mesh it was made for.
+    pub n_cells: usize,
+    /// Number of nodes of the mesh it was made for.
+    pub n_nodes: usize,
+    /// A fingerprint of the mesh connectivity ([`mesh_fingerprint`]).
+    pub mesh_fingerprint: String,
+    /// Part of every cell, in input order.
+    pub cell_part: Vec<u32>,
+}
+
+/// FNV-1a fingerprint of the connectivity, so a partition file is never applied to another mesh.
+pub fn mesh_fingerprint(cells: &Cells, n_nodes: usize) -> String {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    let mut eat = |v: u64| {
+        for b in v.to_le_bytes() {
+            h ^= b as u64;
+            h = h.wrapping_mul(0x0100_0000_01b3);
+        }
+    };
+    eat(n_nodes as u64);
+    for &p in &cells.cell_ptr {
+        eat(p as u64);
+    }
+    for &n in &cells.cell_nodes {
+        eat(n as u64);
+    }
+    format!("{h:016x}")
+}
+
+impl PartitionFile {
+    /// Wraps a partition for writing.
+    pub fn new(cells: &Cells, n_nodes: usize, nparts: usize, cell_part: Vec<u32>) -> Self {
+        PartitionFile {
+            format: "cfrd-partition".into(),
+            version: 1,
+            nparts,
+            n_cells: cells.len(),
+            n_nodes,
+            mesh_fingerprint: mesh_fingerprint(cells, n_nodes),
+            cell_part,
+        }
+    }
+
+    /// Writes the file (to a temporary name first, then renamed, so nothing is half-written).
+    pub fn write(&self, path: &std::path::Path) -> Result<(), PartitionError> {
+        let io = |source| PartitionError::Io {
+            path: path.display().to_string(),
+            source,
+        };
+        let tmp = path.with_extension("partition.tmp");
+        let text = serde_json::to_string(self).expect("serializable");
+        std::fs::write(&tmp, text).map_err(io)?;
+        std::fs::rename(&tmp, path).map_err(io)
+    }
+
+    /// Reads a file and checks it against the mesh and the rank count.
+    pub fn read(
+        path: &std::path::Path,
+        cells: &Cells,
+        n_nodes: usize,
+        nparts: usize,
+    ) -> Result<Vec<u32>, PartitionError> {
+        let p = path.display().to_string();
+        let text = std::fs::read_to_string(path).map_err(|source| PartitionError::Io {
+            path: p.clone(),
+            source,
+        })?;
+        let f: PartitionFile = serde_json::from_str(&text).map_err(|e| PartitionError::Format {
+            path: p.clone(),
+            reason: e.to_string(),
+        })?;
+        let bad = |reason: String| PartitionError::Mismatch {
+            path: p.clone(),
+            reason,
+        };
+        if f.format != "cfrd-partition" || f.version != 1 {
+            return Err(bad(format!("unknown format {} version {}", f.format, f.version)));
+        }
+        if f.nparts != nparts {
+            return Err(bad(format!("made for {} ranks, the run has {nparts}", f.nparts)));
+        }
+        if f.n_cells != cells.len()
+            || f.n_nodes != n_nodes
+            || f.mesh_fingerprint != mesh_fingerprint(cells, n_nodes)
+        {
+            return Err(bad(
+                "made for another mesh (cell/node counts or connectivity differ)".into(),
+            ));
+        }
+        if f.cell_part.len() != cells.len() || f.cell_part.iter().any(|&q| q as usize >= nparts) {
+            return Err(bad("cell_part has the wrong length or a part out of range".into()));
+        }
+        Ok(f.cell_part)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A row of `n` unit hexes along x: nodes (i, j, k) with i in 0..=n, j,k in 0..=1.
+    fn hex_row(n: usize) -> (Cells, usize) {
+        let id = |i: usize, j: usize, k: usize| (i * 4 + j * 2 + k) as u32;
+        let mut cells = Cells::default();
+        for i in 0..n {
+            cells.push(&[
+                id(i, 0, 0),
+                id(i + 1, 0, 0),
+                id(i + 1, 1, 0),
+                id(i, 1, 0),
+                id(i, 0, 1),
+                id(i + 1, 0, 1),
+                id(i + 1, 1, 1),
+                id(i, 1, 1),
+            ]);
+        }
+        (cells, (n + 1) * 4)
+    }
+
+    #[test]
+    fn ownership_is_consistent_and_numbering_contiguous() {
+        let (cells, nn) = hex_row(6);
+        let part = vec![0, 0, 0, 1, 1, 1];
+        let p = Partition::new(&cells, nn, 2, part);
+        // nodes of the shared face x = 3 go to the lower rank
+        assert_eq!(p.node_owner[12], 0);
+        assert_eq!(p.node_offsets, vec![0, 16, 28]);
+        assert_eq!(p.owned_nodes(0).len() + p.owned_nodes(1).len(), nn);
+        assert_eq!(p.ghost_nodes(&cells, 1), vec![12, 13, 14, 15]);
+        assert!(p.ghost_nodes(&cells, 0).is_empty());
+        let mut seen = p.dof_node.clone();
+        seen.sort_unstable();
+        assert_eq!(seen, (0..nn as u32).collect::<Vec<_>>());
+    }
+
+    #[cfg(feature = "metis")]
+    #[test]
+    fn metis_partition_is_balanced_and_deterministic() {
+        let (cells, nn) = hex_row(40);
+        let a = partition_elements(&cells, nn, 2).unwrap();
+        let b = partition_elements(&cells, nn, 2).unwrap();
+        assert_eq!(a, b);
+        let n0 = a.iter().filter(|&&q| q == 0).count();
+        assert!((15..=25).contains(&n0), "unbalanced: {n0} of 40");
+        // a row splits with a single cut: parts form two contiguous runs
+        let changes = a.windows(2).filter(|w| w[0] != w[1]).count();
+        assert_eq!(changes, 1);
+    }
+
+    #[test]
+    fn partition_file_round_trip_and_mismatch() {
+        let (cells, nn) = hex_row(4);
+        let dir = std::env::temp_dir().join(format!("cfrd-part-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("p.json");
+        PartitionFile::new(&cells, nn, 2, vec![0, 0, 1, 1])
+            .write(&path)
+            .unwrap();
+        assert_eq!(
+            PartitionFile::read(&path, &cells, nn, 2).unwrap(),
+            vec![0, 0, 1, 1]
+        );
+        let err = PartitionFile::read(&path, &cells, nn, 3).unwrap_err().to_string();
+        assert!(err.contains("made for 2 ranks"), "{err}");
+        let (other, nn2) = hex_row(5);
+        let err = PartitionFile::read(&path, &other, nn2, 2)
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("another mesh"), "{err}");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}

@@ -123,3 +123,26 @@ pub struct InterfaceOutputs {
     /// Whether the point is slipping / on the plastic branch in its last update.
     pub plastic: bool,
 }
+
+/// Parameters of any solid model, tagged by `model` in YAML (e.g. `model: elastic`).
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
+#[serde(tag = "model", rename_all = "snake_case")]
+pub enum SolidParams {
+    /// Isotropic linear elasticity.
+    Elastic(elastic::ElasticParams),
+}
+
+impl SolidParams {
+    /// Checks the parameter values; the error names the field.
+    pub fn validate(&self) -> Result<(), crate::error::ParamError> {
+        match self {
+            SolidParams::Elastic(p) => p.validate(),
+        }
+    }
+    /// Mass density (kg/m³).
+    pub fn density(&self) -> f64 {
+        match self {
+            SolidParams::Elastic(p) => p.density,
+        }
+    }
+}

@@ -1,0 +1,453 @@
+//! A small safe layer over PETSc: owned handles destroyed on drop, `Result` errors carrying
+//! PETSc's message, and only the Vec/Mat/KSP/PC operations cfrd needs.
+//!
+//! Start-up and shutdown order (`spec/stack.md` §4): MPI first (rsmpi), then [`Petsc::initialize`]
+//! on the same communicator; every PETSc object must be dropped before the [`Petsc`] guard, which
+//! finalizes PETSc but leaves MPI to rsmpi. nalgebra is column-major while `MatSetValues` expects
+//! row-major blocks: [`Matrix::add_values`] takes row-major data and says so.
+#![allow(unsafe_code)]
+
+use super::ffi as p;
+use mpi::raw::AsRaw;
+use mpi::topology::SimpleCommunicator;
+use std::ffi::{c_char, CStr, CString};
+use std::ptr::{null, null_mut};
+use thiserror::Error;
+
+/// A failed PETSc call.
+#[derive(Debug, Clone, Error)]
+#[error("PETSc error {code} in {call}: {message}")]
+pub struct PetscError {
+    /// PETSc's error code.
+    pub code: i32,
+    /// The PETSc function that failed.
+    pub call: &'static str,
+    /// PETSc's text for the code.
+    pub message: String,
+}
+
+fn chk(code: p::PetscErrorCode, call: &'static str) -> Result<(), PetscError> {
+    if code == 0 {
+        return Ok(());
+    }
+    let mut text: *const c_char = null();
+    // SAFETY: PetscErrorMessage only writes a pointer to a static string.
+    let message = unsafe {
+        if p::PetscErrorMessage(code, &mut text, null_mut()) == 0 && !text.is_null() {
+            CStr::from_ptr(text).to_string_lossy().into_owned()
+        } else {
+            "unknown error".to_string()
+        }
+    };
+    Err(PetscError { code, call, message })
+}
+
+macro_rules! call {
+    ($f:ident ( $($arg:expr),* $(,)? )) => {
+        chk(unsafe { p::$f($($arg),*) }, stringify!($f))
+    };
+}
+
+/// PETSc library guard: initialized on a communicator, finalized on drop.
+pub struct Petsc {
+    comm: mpi::ffi::MPI_Comm,
+}
+
+impl Petsc {
+    /// Initializes PETSc on `world` (MPI must already be initialized by rsmpi). Errors are
+    /// returned instead of printed (PETSc's return error handler is pushed).
+    pub fn initialize(world: &SimpleCommunicator) -> Result<Petsc, PetscError> {
+        let comm = world.as_raw();
+        // SAFETY: PETSC_COMM_WORLD must be set before PetscInitialize (stack.md §4); single-threaded.
+        unsafe {
+            p::PETSC_COMM_WORLD = comm;
+        }
+        // PETSc keeps argv; the strings are leaked on purpose (once per process).
+        let prog = CString::new("cfrd").expect("no NUL").into_raw();
+        let argv: &'static mut [*mut c_char; 2] = Box::leak(Box::new([prog, null_mut()]));
+        let mut argc: i32 = 1;
+        let mut argv_ptr: *mut *mut c_char = argv.as_mut_ptr();
+        call!(PetscInitialize(&mut argc, &mut argv_ptr, null(), null()))?;
+        call!(PetscPushErrorHandler(
+            Some(p::PetscReturnErrorHandler),
+            null_mut()
+        ))?;
+        Ok(Petsc { comm })
+    }
+
+    /// Inserts options such as `-ksp_type cg -pc_type gamg`; later calls override earlier ones.
+    pub fn insert_options(&self, options: &str) -> Result<(), PetscError> {
+        let c = CString::new(options).map_err(|_| PetscError {
+            code: -1,
+            call: "PetscOptionsInsertString",
+            message: "option string contains a NUL byte".into(),
+        })?;
+        call!(PetscOptionsInsertString(null_mut(), c.as_ptr()))
+    }
+
+    /// The communicator PETSc runs on.
+    pub fn comm(&self) -> mpi::ffi::MPI_Comm {
+        self.comm
+    }
+}
+
+impl Drop for Petsc {
+    fn drop(&mut self) {
+        // SAFETY: all PETSc objects are owned by values that borrow nothing from here and must be
+        // dropped before the guard (documented contract).
+        unsafe {
+            p::PetscFinalize();
+        }
+    }
+}
+
+/// A PETSc vector (MPI or sequential).
+pub struct Vector {
+    raw: p::Vec,
+}
+
+impl Vector {
+    /// A distributed vector with `n_local` entries on this rank.
+    pub fn mpi(petsc: &Petsc, n_local: usize, block_size: usize) -> Result<Vector, PetscError> {
+        let mut raw: p::Vec = null_mut();
+        call!(VecCreate(petsc.comm, &mut raw))?;
+        let v = Vector { raw };
+        call!(VecSetSizes(v.raw, n_local as i32, p::PETSC_DETERMINE))?;
+        call!(VecSetBlockSize(v.raw, block_size as i32))?;
+        call!(VecSetType(v.raw, p::VECMPI.as_ptr() as *const c_char))?;
+        Ok(v)
+    }
+
+    /// A sequential (rank-local) vector of length `n`.
+    pub fn seq(n: usize) -> Result<Vector, PetscError> {
+        let mut raw: p::Vec = null_mut();
+        call!(VecCreateSeq(mpi::ffi::RSMPI_COMM_SELF, n as i32, &mut raw))?;
+        Ok(Vector { raw })
+    }
+
+    /// A new vector with the same layout (values not copied).
+    pub fn duplicate(&self) -> Result<Vector, PetscError> {
+        let mut raw: p::Vec = null_mut();
+        call!(VecDuplicate(self.raw, &mut raw))?;
+        Ok(Vector { raw })
+    }
+
+    /// Global index range `[lo, hi)` owned by this rank.
+    pub fn ownership_range(&self) -> Result<(usize, usize), PetscError> {
+        let (mut lo, mut hi) = (0, 0);
+        call!(VecGetOwnershipRange(self.raw, &mut lo, &mut hi))?;
+        Ok((lo as usize, hi as usize))
+    }
+
+    /// Sets every entry to `value`.
+    pub fn set_all(&mut self, value: f64) -> Result<(), PetscError> {
+        call!(VecSet(self.raw, value))
+    }
+
+    /// Adds (or inserts) values at global indices; negative indices are ignored. Call
+    /// [`Vector::assemble`] afterwards.
+    pub fn set_values(&mut self, idx: &[i32], values: &[f64], add: bool) -> Result<(), PetscError> {
+        assert_eq!(idx.len(), values.len());
+        let mode = if add { p::ADD_VALUES } else { p::INSERT_VALUES };
+        call!(VecSetValues(
+            self.raw,
+            idx.len() as i32,
+            idx.as_ptr(),
+            values.as_ptr(),
+            mode
+        ))
+    }
+
+    /// Communicates off-process contributions.
+    pub fn assemble(&mut self) -> Result<(), PetscError> {
+        call!(VecAssemblyBegin(self.raw))?;
+        call!(VecAssemblyEnd(self.raw))
+    }
+
+    /// Reads the local part.
+    pub fn read<R>(&self, f: impl FnOnce(&[f64]) -> R) -> Result<R, PetscError> {
+        let mut n = 0;
+        call!(VecGetLocalSize(self.raw, &mut n))?;
+        let mut ptr: *const f64 = null();
+        call!(VecGetArrayRead(self.raw, &mut ptr))?;
+        // SAFETY: PETSc guarantees `n` readable entries until VecRestoreArrayRead.
+        let r = f(unsafe { std::slice::from_raw_parts(ptr, n as usize) });
+        call!(VecRestoreArrayRead(self.raw, &mut ptr))?;
+        Ok(r)
+    }
+
+    /// Writes the local part.
+    pub fn write<R>(&mut self, f: impl FnOnce(&mut [f64]) -> R) -> Result<R, PetscError> {
+        let mut n = 0;
+        call!(VecGetLocalSize(self.raw, &mut n))?;
+        let mut ptr: *mut f64 = null_mut();
+        call!(VecGetArray(self.raw, &mut ptr))?;
+        // SAFETY: PETSc guarantees `n` writable entries until VecRestoreArray.
+        let r = f(unsafe { std::slice::from_raw_parts_mut(ptr, n as usize) });
+        call!(VecRestoreArray(self.raw, &mut ptr))?;
+        Ok(r)
+    }
+
+    /// `self ← self + alpha·x`.
+    pub fn axpy(&mut self, alpha: f64, x: &Vector) -> Result<(), PetscError> {
+        call!(VecAXPY(self.raw, alpha, x.raw))
+    }
+
+    /// Copies the values of `x` into `self`.
+    pub fn copy_from(&mut self, x: &Vector) -> Result<(), PetscError> {
+        call!(VecCopy(x.raw, self.raw))
+    }
+
+    /// Euclidean norm (collective).
+    pub fn norm2(&self) -> Result<f64, PetscError> {
+        let mut r = 0.0;
+        call!(VecNorm(self.raw, p::NORM_2, &mut r))?;
+        Ok(r)
+    }
+
+    /// Max norm (collective).
+    pub fn norm_inf(&self) -> Result<f64, PetscError> {
+        let mut r = 0.0;
+        call!(VecNorm(self.raw, p::NORM_INFINITY, &mut r))?;
+        Ok(r)
+    }
+}
+
+impl Drop for Vector {
+    fn drop(&mut self) {
+        // SAFETY: raw was created by PETSc and is destroyed once.
+        unsafe {
+            p::VecDestroy(&mut self.raw);
+        }
+    }
+}
+
+/// Gathers selected global entries of a distributed vector into a local sequential vector.
+pub struct Gather {
+    ctx: p::VecScatter,
+    local: Vector,
+}
+
+impl Gather {
+    /// A gather of the global indices `from` of vectors laid out like `like`.
+    pub fn new(like: &Vector, from: &[i32]) -> Result<Gather, PetscError> {
+        let local = Vector::seq(from.len())?;
+        let mut is: p::IS = null_mut();
+        call!(ISCreateGeneral(
+            mpi::ffi::RSMPI_COMM_SELF,
+            from.len() as i32,
+            from.as_ptr(),
+            p::PETSC_COPY_VALUES,
+            &mut is
+        ))?;
+        let mut ctx: p::VecScatter = null_mut();
+        let r = call!(VecScatterCreate(like.raw, is, local.raw, null_mut(), &mut ctx));
+        // SAFETY: the index set was created above and is no longer needed.
+        unsafe {
+            p::ISDestroy(&mut is);
+        }
+        r?;
+        Ok(Gather { ctx, local })
+    }
+
+    /// Gathers the entries of `x` and returns them in the order of `from`.
+    pub fn gather<'a>(&'a mut self, x: &Vector) -> Result<&'a Vector, PetscError> {
+        call!(VecScatterBegin(
+            self.ctx,
+            x.raw,
+            self.local.raw,
+            p::INSERT_VALUES,
+            p::SCATTER_FORWARD
+        ))?;
+        call!(VecScatterEnd(
+            self.ctx,
+            x.raw,
+            self.local.raw,
+            p::INSERT_VALUES,
+            p::SCATTER_FORWARD
+        ))?;
+        Ok(&self.local)
+    }
+}
+
+impl Drop for Gather {
+    fn drop(&mut self) {
+        // SAFETY: created by VecScatterCreate, destroyed once.
+        unsafe {
+            p::VecScatterDestroy(&mut self.ctx);
+        }
+    }
+}
+
+/// A distributed sparse matrix (MPIAIJ with block size) with exact preallocation.
+pub struct Matrix {
+    raw: p::Mat,
+}
+
+impl Matrix {
+    /// Square AIJ matrix with `n_local` rows on this rank, `d_nnz`/`o_nnz` nonzeros per local
+    /// row in the diagonal/off-diagonal blocks. New nonzeros outside the pattern are an error.
+    pub fn aij(
+        petsc: &Petsc,
+        n_local: usize,
+        block_size: usize,
+        d_nnz: &[i32],
+        o_nnz: &[i32],
+    ) -> Result<Matrix, PetscError> {
+        let mut raw: p::Mat = null_mut();
+        call!(MatCreate(petsc.comm, &mut raw))?;
+        let m = Matrix { raw };
+        let nl = n_local as i32;
+        call!(MatSetSizes(m.raw, nl, nl, p::PETSC_DETERMINE, p::PETSC_DETERMINE))?;
+        call!(MatSetType(m.raw, p::MATAIJ.as_ptr() as *const c_char))?;
+        call!(MatSetBlockSize(m.raw, block_size as i32))?;
+        call!(MatSeqAIJSetPreallocation(m.raw, 0, d_nnz.as_ptr()))?;
+        call!(MatMPIAIJSetPreallocation(
+            m.raw,
+            0,
+            d_nnz.as_ptr(),
+            0,
+            o_nnz.as_ptr()
+        ))?;
+        call!(MatSetOption(
+            m.raw,
+            p::MAT_NEW_NONZERO_ALLOCATION_ERR,
+            p::PETSC_TRUE
+        ))?;
+        Ok(m)
+    }
+
+    /// Sets all stored entries to zero (keeps the pattern).
+    pub fn zero(&mut self) -> Result<(), PetscError> {
+        call!(MatZeroEntries(self.raw))
+    }
+
+    /// Adds a dense **row-major** block `values[i*cols.len()+j]` at (`rows[i]`, `cols[j]`);
+    /// negative indices are skipped.
+    pub fn add_values(&mut self, rows: &[i32], cols: &[i32], values: &[f64]) -> Result<(), PetscError> {
+        assert_eq!(rows.len() * cols.len(), values.len());
+        call!(MatSetValues(
+            self.raw,
+            rows.len() as i32,
+            rows.as_ptr(),
+            cols.len() as i32,
+            cols.as_ptr(),
+            values.as_ptr(),
+            p::ADD_VALUES
+        ))
+    }
+
+    /// Final assembly (communicates off-process entries).
+    pub fn assemble(&mut self) -> Result<(), PetscError> {
+        call!(MatAssemblyBegin(self.raw, p::MAT_FINAL_ASSEMBLY))?;
+        call!(MatAssemblyEnd(self.raw, p::MAT_FINAL_ASSEMBLY))
+    }
+
+    /// Zeroes the given global rows and columns, puts `diag` on the diagonal and adjusts `b`
+    /// so that the solution takes the values of `x` at those rows (Dirichlet conditions).
+    pub fn zero_rows_columns(
+        &mut self,
+        rows: &[i32],
+        diag: f64,
+        x: &Vector,
+        b: &mut Vector,
+    ) -> Result<(), PetscError> {
+        call!(MatZeroRowsColumns(
+            self.raw,
+            rows.len() as i32,
+            rows.as_ptr(),
+            diag,
+            x.raw,
+            b.raw
+        ))
+    }
+
+    /// Attaches the six rigid-body modes computed from nodal `coords` (a vector with block size
+    /// 3 laid out like the DOFs) as the near-null space for algebraic multigrid.
+    pub fn set_rigid_body_near_null_space(&mut self, coords: &Vector) -> Result<(), PetscError> {
+        let mut ns: p::MatNullSpace = null_mut();
+        call!(MatNullSpaceCreateRigidBody(coords.raw, &mut ns))?;
+        let r = call!(MatSetNearNullSpace(self.raw, ns));
+        // SAFETY: the matrix keeps its own reference.
+        unsafe {
+            p::MatNullSpaceDestroy(&mut ns);
+        }
+        r
+    }
+
+    /// `y ← A x`.
+    pub fn mult(&self, x: &Vector, y: &mut Vector) -> Result<(), PetscError> {
+        call!(MatMult(self.raw, x.raw, y.raw))
+    }
+}
+
+impl Drop for Matrix {
+    fn drop(&mut self) {
+        // SAFETY: created by MatCreate, destroyed once.
+        unsafe {
+            p::MatDestroy(&mut self.raw);
+        }
+    }
+}
+
+/// Outcome of a linear solve.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SolveStats {
+    /// KSP iterations.
+    pub iterations: u32,
+    /// PETSc's converged reason (> 0 converged, < 0 diverged).
+    pub reason: i32,
+    /// Final residual norm as KSP measures it.
+    pub residual: f64,
+}
+
+/// A Krylov solver with its preconditioner.
+pub struct Ksp {
+    raw: p::KSP,
+}
+
+impl Ksp {
+    /// A solver with cfrd's defaults (CG + GAMG, relative tolerance `rtol`), then overridden by
+    /// PETSc options (`-ksp_type`, `-pc_type`, ... from the scene and the command line).
+    pub fn new(petsc: &Petsc, rtol: f64, max_it: u32) -> Result<Ksp, PetscError> {
+        let mut raw: p::KSP = null_mut();
+        call!(KSPCreate(petsc.comm, &mut raw))?;
+        let k = Ksp { raw };
+        call!(KSPSetType(k.raw, p::KSPCG.as_ptr() as *const c_char))?;
+        let mut pc: p::PC = null_mut();
+        call!(KSPGetPC(k.raw, &mut pc))?;
+        call!(PCSetType(pc, p::PCGAMG.as_ptr() as *const c_char))?;
+        call!(KSPSetTolerances(k.raw, rtol, 1e-300, 1e30, max_it as i32))?;
+        call!(KSPSetNormType(k.raw, p::KSP_NORM_UNPRECONDITIONED))?;
+        Ok(k)
+    }
+
+    /// Sets the operator (also used to build the preconditioner) and applies PETSc options.
+    pub fn set_operator(&mut self, a: &Matrix) -> Result<(), PetscError> {
+        call!(KSPSetOperators(self.raw, a.raw, a.raw))?;
+        call!(KSPSetFromOptions(self.raw))
+    }
+
+    /// Solves `A x = b`.
+    pub fn solve(&mut self, b: &Vector, x: &mut Vector) -> Result<SolveStats, PetscError> {
+        call!(KSPSolve(self.raw, b.raw, x.raw))?;
+        let (mut its, mut reason, mut res) = (0, 0, 0.0);
+        call!(KSPGetIterationNumber(self.raw, &mut its))?;
+        call!(KSPGetConvergedReason(self.raw, &mut reason))?;
+        call!(KSPGetResidualNorm(self.raw, &mut res))?;
+        Ok(SolveStats {
+            iterations: its as u32,
+            reason,
+            residual: res,
+        })
+    }
+}
+
+impl Drop for Ksp {
+    fn drop(&mut self) {
+        // SAFETY: created by KSPCreate, destroyed once.
+        unsafe {
+            p::KSPDestroy(&mut self.raw);
+        }
+    }
+}

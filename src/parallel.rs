@@ -1,0 +1,100 @@
+//! MPI start-up, the abort-on-panic hook, and collective decisions.
+//!
+//! Rules (`spec/stack.md` §4): MPI is initialized first (rsmpi), PETSc second, and finalized in
+//! the reverse order. A panic on one rank must not leave the others waiting in a collective: the
+//! hook installed by [`install_panic_hook`] prints the panic and calls `MPI_Abort`, ending the
+//! whole job. Input errors are decided collectively with [`any_error`], so that every rank
+//! takes the same branch and exits with the same code.
+#![allow(unsafe_code)]
+
+use mpi::collective::{CommunicatorCollectives, Root, SystemOperation};
+use mpi::topology::{Communicator, SimpleCommunicator};
+
+/// Exit code for input errors (bad YAML, mesh, parameters, options).
+pub const EXIT_INPUT: i32 = 2;
+/// Exit code for solver failures.
+pub const EXIT_SOLVER: i32 = 3;
+/// Exit code used by the panic hook's `MPI_Abort`.
+pub const EXIT_PANIC: i32 = 101;
+
+/// Installs a panic hook that prints the panic (default hook) and aborts the whole MPI job.
+pub fn install_panic_hook() {
+    let default = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        default(info);
+        // SAFETY: MPI_Abort may be called at any time after MPI_Init; it does not return.
+        unsafe {
+            mpi::ffi::MPI_Abort(mpi::ffi::RSMPI_COMM_WORLD, EXIT_PANIC);
+        }
+    }));
+}
+
+/// True on every rank if `local` is true on any rank (collective).
+pub fn any(world: &SimpleCommunicator, local: bool) -> bool {
+    let mut out = 0i32;
+    world.all_reduce_into(&(local as i32), &mut out, SystemOperation::max());
+    out != 0
+}
+
+/// Decides a fallible step collectively: if any rank failed, every rank gets `Err` with the
+/// message of the lowest failing rank (broadcast), so all ranks report and exit the same way.
+pub fn any_error<T, E: std::fmt::Display>(
+    world: &SimpleCommunicator,
+    local: Result<T, E>,
+) -> Result<T, String> {
+    let my_fail = if local.is_err() { world.rank() } else { i32::MAX };
+    let mut first = i32::MAX;
+    world.all_reduce_into(&my_fail, &mut first, SystemOperation::min());
+    if first == i32::MAX {
+        return local.map_err(|_| unreachable!("no rank failed"));
+    }
+    let mut msg: Vec<u8> = match &local {
+        Err(e) if world.rank() == first => e.to_string().into_bytes(),
+        _ => Vec::new(),
+    };
+    broadcast_bytes(world, first, &mut msg);
+    Err(String::from_utf8_lossy(&msg).into_owned())
+}
+
+/// Broadcasts a byte buffer of any length from `root`.
+pub fn broadcast_bytes(world: &SimpleCommunicator, root: i32, data: &mut Vec<u8>) {
+    let proc = world.process_at_rank(root);
+    let mut len = data.len() as u64;
+    proc.broadcast_into(&mut len);
+    data.resize(len as usize, 0);
+    if len > 0 {
+        proc.broadcast_into(&mut data[..]);
+    }
+}
+
+/// Broadcasts a `u32` array from `root` (the other ranks' contents are replaced).
+pub fn broadcast_u32(world: &SimpleCommunicator, root: i32, data: &mut Vec<u32>) {
+    let proc = world.process_at_rank(root);
+    let mut len = data.len() as u64;
+    proc.broadcast_into(&mut len);
+    data.resize(len as usize, 0);
+    if len > 0 {
+        proc.broadcast_into(&mut data[..]);
+    }
+}
+
+/// Sum over ranks.
+pub fn sum_f64(world: &SimpleCommunicator, v: f64) -> f64 {
+    let mut out = 0.0;
+    world.all_reduce_into(&v, &mut out, SystemOperation::sum());
+    out
+}
+
+/// Sum over ranks.
+pub fn sum_u64(world: &SimpleCommunicator, v: u64) -> u64 {
+    let mut out = 0u64;
+    world.all_reduce_into(&v, &mut out, SystemOperation::sum());
+    out
+}
+
+/// Maximum over ranks.
+pub fn max_f64(world: &SimpleCommunicator, v: f64) -> f64 {
+    let mut out = 0.0;
+    world.all_reduce_into(&v, &mut out, SystemOperation::max());
+    out
+}

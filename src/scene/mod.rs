@@ -1,0 +1,16 @@
+//! Scenes: the YAML input that decides what is built and assembled.
+//!
+//! [`Scene::load`] parses (unknown keys rejected, every error names its YAML path), validates
+//! values (units, ranges) and cross-references against the mesh (blocks, sets), and resolves the
+//! scene into typed objects: the materials of each block and the list of physics
+//! [`Term`]s. The solver iterates over the terms; nothing the scene does not ask for is built.
+
+pub mod error;
+pub mod schema;
+pub mod term;
+pub mod validate;
+
+pub use error::SceneError;
+pub use schema::SceneFile;
+pub use term::Term;
+pub use validate::Scene;

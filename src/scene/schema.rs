@@ -1,0 +1,267 @@
+//! The scene file format (serde + JSON Schema). Every field is documented here; `cfrd schema`
+//! prints the JSON Schema generated from these types, so editors can validate and complete
+//! scene files and this documentation cannot fall out of date.
+
+use crate::material::SolidParams;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+
+/// A scene: mesh, materials, boundary conditions, loads, solver and output settings.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SceneFile {
+    /// Name of the scene (written into the results).
+    pub name: String,
+    /// Unit system. Only `SI` is accepted (N, m, kg, s, Pa).
+    pub units: Units,
+    /// Where the mesh comes from.
+    pub mesh: MeshSource,
+    /// Optional precomputed partition (`cfrd partition`); METIS runs at start-up otherwise.
+    #[serde(default)]
+    pub partition: Option<PathBuf>,
+    /// Materials by name.
+    pub materials: BTreeMap<String, SolidParams>,
+    /// Element blocks (mesh physical volumes) by name, each with its material. Every block of
+    /// the mesh must be listed.
+    pub blocks: BTreeMap<String, BlockSpec>,
+    /// Displacement boundary conditions on node sets.
+    #[serde(default)]
+    pub boundary: Vec<FixSpec>,
+    /// Loads. Each load present adds one physics term; absent loads are not built.
+    #[serde(default)]
+    pub loads: LoadsSpec,
+    /// Linear and nonlinear solver settings.
+    #[serde(default)]
+    pub solver: SolverSpec,
+    /// Output settings.
+    #[serde(default)]
+    pub output: OutputSpec,
+}
+
+/// Unit system.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+pub enum Units {
+    /// N, m, kg, s, Pa.
+    SI,
+}
+
+/// Mesh source: exactly one of `file`, `box` or `dam`.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct MeshSource {
+    /// A Gmsh MSH 4.1 or 2.2 ASCII file, relative to the scene file.
+    #[serde(default)]
+    pub file: Option<PathBuf>,
+    /// A structured box of hexahedra.
+    #[serde(default, rename = "box")]
+    pub box_: Option<BoxSpec>,
+    /// A dam-like trapezoidal section extruded along the dam axis.
+    #[serde(default)]
+    pub dam: Option<DamSpec>,
+}
+
+/// Structured box generator: blocks `layer_1..layer_k` from the bottom up (or one block `box`),
+/// node sets and face sets `xmin, xmax, ymin, ymax, zmin, zmax`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct BoxSpec {
+    /// Lower corner (m).
+    #[serde(default)]
+    pub origin: [f64; 3],
+    /// Edge lengths (m).
+    pub size: [f64; 3],
+    /// Divisions along x, y, z.
+    pub divisions: [u32; 3],
+    /// Number of horizontal layers (blocks `layer_1` ... from the bottom); 0 or 1: one block `box`.
+    #[serde(default)]
+    pub layers: u32,
+}
+
+/// Dam-like mesh generator: blocks `layer_1..layer_k` from the bottom up; node and face sets
+/// `upstream`, `downstream`, `base` (z = 0), `crest`, `ymin` and `ymax` (the two ends of the
+/// dam axis).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct DamSpec {
+    /// Height (m).
+    pub height: f64,
+    /// Crest width (m).
+    pub crest_width: f64,
+    /// Upstream slope 1:m (horizontal per vertical).
+    pub upstream_slope: f64,
+    /// Downstream slope 1:m.
+    pub downstream_slope: f64,
+    /// Length along the dam axis (m).
+    pub length: f64,
+    /// Divisions across the stream (x), along the axis (y) and vertically (z).
+    pub divisions: [u32; 3],
+    /// Number of horizontal layers (blocks).
+    #[serde(default = "one")]
+    pub layers: u32,
+}
+
+fn one() -> u32 {
+    1
+}
+
+/// Material assignment of a block.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct BlockSpec {
+    /// Name of a material in `materials`.
+    pub material: String,
+}
+
+/// Displacement component.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "lowercase")]
+pub enum Axis {
+    /// x (stream).
+    X,
+    /// y (dam axis).
+    Y,
+    /// z (up).
+    Z,
+}
+
+impl Axis {
+    /// Component index 0, 1, 2.
+    pub fn index(self) -> usize {
+        match self {
+            Axis::X => 0,
+            Axis::Y => 1,
+            Axis::Z => 2,
+        }
+    }
+}
+
+/// Fixed displacement components on a node set.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct FixSpec {
+    /// Node set name (a mesh physical group of points, curves or surfaces).
+    pub set: String,
+    /// Components to fix.
+    pub fix: Vec<Axis>,
+    /// Prescribed displacement (m) for the fixed components, in the order of `fix`;
+    /// zero when omitted.
+    #[serde(default)]
+    pub value: Vec<f64>,
+}
+
+/// Loads of the scene.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct LoadsSpec {
+    /// Self-weight with the gravity vector `g` (m/s²), e.g. `[0, 0, -9.81]`.
+    #[serde(default)]
+    pub gravity: Option<GravitySpec>,
+    /// Uniform pressures on face sets.
+    #[serde(default)]
+    pub pressure: Vec<PressureSpec>,
+    /// Hydrostatic water pressure on face sets, from a free surface at `level`.
+    #[serde(default)]
+    pub hydrostatic: Vec<HydrostaticSpec>,
+}
+
+/// Gravity.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct GravitySpec {
+    /// Gravity acceleration vector (m/s²).
+    pub g: [f64; 3],
+}
+
+/// A uniform pressure on a face set; positive pushes against the face (compression).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct PressureSpec {
+    /// Face set name (a mesh physical surface).
+    pub faces: String,
+    /// Pressure (Pa).
+    pub value: f64,
+}
+
+/// Hydrostatic pressure p = γ_w·⟨level − z⟩ on a face set.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct HydrostaticSpec {
+    /// Face set name.
+    pub faces: String,
+    /// Elevation of the free surface (m).
+    pub level: f64,
+    /// Unit weight of water γ_w (N/m³); default 9810.
+    #[serde(default = "gamma_w")]
+    pub unit_weight: f64,
+}
+
+fn gamma_w() -> f64 {
+    9810.0
+}
+
+/// Solver settings.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SolverSpec {
+    /// Relative tolerance of the linear solver (unpreconditioned residual).
+    #[serde(default = "rtol")]
+    pub rtol: f64,
+    /// Maximum linear iterations.
+    #[serde(default = "max_it")]
+    pub max_iterations: u32,
+    /// Newton tolerance on the residual relative to the external force.
+    #[serde(default = "newton_tol")]
+    pub newton_tol: f64,
+    /// Maximum Newton iterations per step.
+    #[serde(default = "newton_max")]
+    pub newton_max_iterations: u32,
+    /// PETSc options, e.g. `-ksp_type gmres -pc_type hypre`; command-line options override them.
+    #[serde(default)]
+    pub petsc_options: String,
+}
+
+fn rtol() -> f64 {
+    1e-10
+}
+fn max_it() -> u32 {
+    2000
+}
+fn newton_tol() -> f64 {
+    1e-8
+}
+fn newton_max() -> u32 {
+    25
+}
+
+impl Default for SolverSpec {
+    fn default() -> Self {
+        SolverSpec {
+            rtol: rtol(),
+            max_iterations: max_it(),
+            newton_tol: newton_tol(),
+            newton_max_iterations: newton_max(),
+            petsc_options: String::new(),
+        }
+    }
+}
+
+/// Output settings.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct OutputSpec {
+    /// Output directory, relative to the working directory (the command line `-o` overrides it).
+    #[serde(default = "out_dir")]
+    pub dir: PathBuf,
+}
+
+fn out_dir() -> PathBuf {
+    PathBuf::from("out")
+}
+
+impl Default for OutputSpec {
+    fn default() -> Self {
+        OutputSpec { dir: out_dir() }
+    }
+}

@@ -1,0 +1,286 @@
+//! Loading, validating and resolving a scene.
+
+use super::error::SceneError;
+use super::schema::{MeshSource, SceneFile};
+use super::term::Term;
+use crate::material::SolidParams;
+use crate::mesh::{generate, Mesh};
+use std::path::{Path, PathBuf};
+
+/// A loaded, validated and resolved scene.
+#[derive(Debug, Clone)]
+pub struct Scene {
+    /// The file as written.
+    pub file: SceneFile,
+    /// Where it was read from (for messages); `<embedded>` for the built-in default.
+    pub source: String,
+    /// The mesh.
+    pub mesh: Mesh,
+    /// Material of every mesh block (indexed like `mesh.blocks`).
+    pub block_materials: Vec<SolidParams>,
+    /// The physics terms the scene switches on (besides the internal force, always present).
+    pub terms: Vec<Term>,
+    /// Constrained DOFs: (node index, component, prescribed value), sorted and unique.
+    pub fixed: Vec<(u32, u8, f64)>,
+    /// FNV-1a hash of the scene text (checkpoints refuse another scene).
+    pub hash: String,
+}
+
+impl Scene {
+    /// Reads, parses, validates and resolves a scene file.
+    pub fn load(path: &Path) -> Result<Scene, SceneError> {
+        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Read {
+            file: path.display().to_string(),
+            source,
+        })?;
+        let base = path.parent().map(Path::to_path_buf).unwrap_or_default();
+        Scene::from_str(&text, &path.display().to_string(), &base)
+    }
+
+    /// Parses, validates and resolves scene text; relative paths are taken from `base`.
+    pub fn from_str(text: &str, source: &str, base: &Path) -> Result<Scene, SceneError> {
+        let file = parse(text, source)?;
+        let inv = |path: &str, message: String| SceneError::Invalid {
+            file: source.to_string(),
+            path: path.to_string(),
+            message,
+        };
+        check_values(&file, &inv)?;
+        let mesh = build_mesh(&file.mesh, base).map_err(|message| SceneError::Mesh {
+            file: source.to_string(),
+            message,
+        })?;
+
+        // blocks <-> mesh blocks <-> materials
+        let mut block_materials = Vec::with_capacity(mesh.blocks.len());
+        for (name, spec) in &file.blocks {
+            if mesh.block_index(name).is_none() {
+                let known: Vec<&str> = mesh.blocks.iter().map(|b| b.name.as_str()).collect();
+                return Err(inv(
+                    &format!("blocks.{name}"),
+                    format!(
+                        "the mesh has no block (physical volume) '{name}'; it has: {}",
+                        known.join(", ")
+                    ),
+                ));
+            }
+            if !file.materials.contains_key(&spec.material) {
+                return Err(inv(
+                    &format!("blocks.{name}.material"),
+                    format!("unknown material '{}'", spec.material),
+                ));
+            }
+        }
+        for b in &mesh.blocks {
+            match file.blocks.get(&b.name) {
+                Some(spec) => block_materials.push(file.materials[&spec.material].clone()),
+                None => {
+                    return Err(inv(
+                        "blocks",
+                        format!("mesh block '{}' has no material assigned", b.name),
+                    ));
+                }
+            }
+        }
+
+        // boundary conditions
+        let mut fixed = Vec::new();
+        for (i, f) in file.boundary.iter().enumerate() {
+            let Some(nodes) = mesh.node_sets.get(&f.set) else {
+                let known: Vec<&String> = mesh.node_sets.keys().collect();
+                return Err(inv(
+                    &format!("boundary[{i}].set"),
+                    format!("the mesh has no node set '{}'; it has: {known:?}", f.set),
+                ));
+            };
+            if f.fix.is_empty() {
+                return Err(inv(&format!("boundary[{i}].fix"), "lists no component".into()));
+            }
+            if !f.value.is_empty() && f.value.len() != f.fix.len() {
+                return Err(inv(
+                    &format!("boundary[{i}].value"),
+                    format!("has {} entries but fix has {}", f.value.len(), f.fix.len()),
+                ));
+            }
+            for (k, axis) in f.fix.iter().enumerate() {
+                let v = f.value.get(k).copied().unwrap_or(0.0);
+                fixed.extend(nodes.iter().map(|&n| (n, axis.index() as u8, v)));
+            }
+        }
+        fixed.sort_by(|a, b| (a.0, a.1).cmp(&(b.0, b.1)));
+        for w in fixed.windows(2) {
+            if (w[0].0, w[0].1) == (w[1].0, w[1].1) && w[0].2 != w[1].2 {
+                return Err(inv(
+                    "boundary",
+                    format!(
+                        "node {} component {} is fixed twice with different values",
+                        mesh.node_ids[w[0].0 as usize], w[0].1
+                    ),
+                ));
+            }
+        }
+        fixed.dedup_by(|a, b| (a.0, a.1) == (b.0, b.1));
+
+        // terms
+        let mut terms = Vec::new();
+        if let Some(g) = &file.loads.gravity {
+            terms.push(Term::Gravity { g: g.g });
+        }
+        for (i, p) in file.loads.pressure.iter().enumerate() {
+            if !mesh.face_sets.contains_key(&p.faces) {
+                return Err(inv(
+                    &format!("loads.pressure[{i}].faces"),
+                    format!("the mesh has no face set '{}'", p.faces),
+                ));
+            }
+            terms.push(Term::Pressure {
+                faces: p.faces.clone(),
+                value: p.value,
+            });
+        }
+        for (i, h) in file.loads.hydrostatic.iter().enumerate() {
+            if !mesh.face_sets.contains_key(&h.faces) {
+                return Err(inv(
+                    &format!("loads.hydrostatic[{i}].faces"),
+                    format!("the mesh has no face set '{}'", h.faces),
+                ));
+            }
+            terms.push(Term::Hydrostatic {
+                faces: h.faces.clone(),
+                level: h.level,
+                unit_weight: h.unit_weight,
+            });
+        }
+
+        Ok(Scene {
+            file,
+            source: source.to_string(),
+            mesh,
+            block_materials,
+            terms,
+            fixed,
+            hash: fnv1a(text.as_bytes()),
+        })
+    }
+}
+
+/// Parses scene text with the YAML path of any error.
+pub fn parse(text: &str, source: &str) -> Result<SceneFile, SceneError> {
+    let de = serde_yaml::Deserializer::from_str(text);
+    serde_path_to_error::deserialize(de).map_err(|e| {
+        let path = e.path().to_string();
+        SceneError::Parse {
+            file: source.to_string(),
+            path,
+            message: e.into_inner().to_string(),
+        }
+    })
+}
+
+/// Value checks that need no mesh: units, ranges, plausibility of SI magnitudes.
+fn check_values(f: &SceneFile, inv: &dyn Fn(&str, String) -> SceneError) -> Result<(), SceneError> {
+    for (name, m) in &f.materials {
+        m.validate()
+            .map_err(|e| inv(&format!("materials.{name}.{}", e.field), e.reason))?;
+        if let SolidParams::Elastic(p) = m {
+            if !(1.0e5..=1.0e13).contains(&p.young) {
+                return Err(inv(
+                    &format!("materials.{name}.young"),
+                    format!(
+                        "{} Pa is not a plausible Young's modulus; values are in Pa (SI), e.g. 25.5e9",
+                        p.young
+                    ),
+                ));
+            }
+        }
+        let rho = m.density();
+        if !(100.0..=30_000.0).contains(&rho) {
+            return Err(inv(
+                &format!("materials.{name}.density"),
+                format!("{rho} kg/m³ is not a plausible density; values are in kg/m³ (SI), e.g. 2150"),
+            ));
+        }
+    }
+    if let Some(g) = &f.loads.gravity {
+        let n = (g.g[0] * g.g[0] + g.g[1] * g.g[1] + g.g[2] * g.g[2]).sqrt();
+        if !n.is_finite() || n > 100.0 {
+            return Err(inv(
+                "loads.gravity.g",
+                format!("|g| = {n} m/s² is not plausible (SI: 9.81)"),
+            ));
+        }
+    }
+    for (i, p) in f.loads.pressure.iter().enumerate() {
+        if !p.value.is_finite() {
+            return Err(inv(
+                &format!("loads.pressure[{i}].value"),
+                "must be finite".into(),
+            ));
+        }
+    }
+    for (i, h) in f.loads.hydrostatic.iter().enumerate() {
+        if !(h.unit_weight.is_finite() && h.unit_weight > 100.0 && h.unit_weight < 1.0e5) {
+            return Err(inv(
+                &format!("loads.hydrostatic[{i}].unit_weight"),
+                format!("{} N/m³ is not plausible (SI: 9810)", h.unit_weight),
+            ));
+        }
+    }
+    let s = &f.solver;
+    if !(s.rtol > 0.0 && s.rtol < 1.0) {
+        return Err(inv("solver.rtol", format!("must lie in (0, 1), got {}", s.rtol)));
+    }
+    if !(s.newton_tol > 0.0 && s.newton_tol < 1.0) {
+        return Err(inv(
+            "solver.newton_tol",
+            format!("must lie in (0, 1), got {}", s.newton_tol),
+        ));
+    }
+    Ok(())
+}
+
+/// Reads or generates the mesh, then validates it.
+fn build_mesh(src: &MeshSource, base: &Path) -> Result<Mesh, String> {
+    let mesh = match (&src.file, &src.box_, &src.dam) {
+        (Some(p), None, None) => {
+            let path: PathBuf = if p.is_absolute() { p.clone() } else { base.join(p) };
+            crate::mesh::gmsh::read(&path).map_err(|e| e.to_string())?
+        }
+        (None, Some(b), None) => {
+            let spec = generate::BoxSpec {
+                origin: b.origin,
+                size: b.size,
+                divisions: b.divisions.map(|d| d as usize),
+                layers: b.layers.max(1) as usize,
+                jitter: 0.0,
+                seed: 1,
+            };
+            generate::box_mesh(&spec).map_err(|e| e.to_string())?
+        }
+        (None, None, Some(d)) => {
+            let spec = generate::DamSpec {
+                height: d.height,
+                crest_width: d.crest_width,
+                upstream_slope: d.upstream_slope,
+                downstream_slope: d.downstream_slope,
+                length: d.length,
+                divisions: d.divisions.map(|v| v as usize),
+                layers: d.layers.max(1) as usize,
+            };
+            generate::dam_mesh(&spec).map_err(|e| e.to_string())?
+        }
+        _ => return Err("give exactly one of mesh.file, mesh.box or mesh.dam".into()),
+    };
+    mesh.validate().map_err(|e| e.to_string())?;
+    Ok(mesh)
+}
+
+/// FNV-1a hash (hex) of bytes.
+pub fn fnv1a(bytes: &[u8]) -> String {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for &b in bytes {
+        h ^= b as u64;
+        h = h.wrapping_mul(0x0100_0000_01b3);
+    }
+    format!("{h:016x}")
+}

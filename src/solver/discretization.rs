@@ -1,0 +1,139 @@
+//! Rank-local view of the distributed problem: owned elements, owned and ghost nodes, and the
+//! DOF numbering.
+//!
+//! DOF numbering (rank-count independent in meaning, contiguous per rank for PETSc): nodes are
+//! sorted by (owner rank, input index); DOF `3·k + c` is component `c` of the `k`-th node in
+//! that order ([`partition::Partition::dof_node`]). Each rank owns the DOFs of its nodes.
+
+use partition::{Cells, Partition};
+
+/// Rank-local indexing of the mesh.
+#[derive(Debug, Clone)]
+pub struct Discretization {
+    /// This rank.
+    pub rank: usize,
+    /// The partition (same on every rank).
+    pub partition: Partition,
+    /// Elements this rank owns and assembles, in input order.
+    pub owned_elements: Vec<u32>,
+    /// Nodes this rank owns, in input order.
+    pub owned_nodes: Vec<u32>,
+    /// Nodes the owned elements touch plus the owned nodes (sorted input indices): the rank's
+    /// local node list, gathered from the distributed vectors.
+    pub local_nodes: Vec<u32>,
+    /// For every owned element, the positions of its 8 nodes in `local_nodes`.
+    pub element_local: Vec<[u32; 8]>,
+    /// Global (PETSc) DOF index of each local DOF (3 per local node).
+    pub local_dofs: Vec<i32>,
+    /// First global DOF this rank owns.
+    pub dof_lo: usize,
+    /// Number of DOFs this rank owns.
+    pub n_owned_dofs: usize,
+    /// Total number of DOFs.
+    pub n_dofs: usize,
+}
+
+impl Discretization {
+    /// Builds the rank-local indexing of `cells` (each with 8 nodes) for `rank`.
+    pub fn new(cells: &Cells, n_nodes: usize, partition: Partition, rank: usize) -> Discretization {
+        let owned_elements = partition.owned_cells(rank);
+        let owned_nodes = partition.owned_nodes(rank);
+        let mut local_nodes: Vec<u32> = owned_nodes.clone();
+        local_nodes.extend(partition.ghost_nodes(cells, rank));
+        local_nodes.sort_unstable();
+        local_nodes.dedup();
+        let mut pos = vec![u32::MAX; n_nodes];
+        for (i, &n) in local_nodes.iter().enumerate() {
+            pos[n as usize] = i as u32;
+        }
+        let element_local = owned_elements
+            .iter()
+            .map(|&e| {
+                let nodes = cells.nodes(e as usize);
+                std::array::from_fn(|a| pos[nodes[a] as usize])
+            })
+            .collect();
+        let local_dofs = local_nodes
+            .iter()
+            .flat_map(|&n| {
+                let k = partition.dof_node[n as usize] as i32;
+                [3 * k, 3 * k + 1, 3 * k + 2]
+            })
+            .collect();
+        let dof_lo = 3 * partition.node_offsets[rank];
+        let n_owned_dofs = 3 * owned_nodes.len();
+        Discretization {
+            rank,
+            owned_elements,
+            owned_nodes,
+            local_nodes,
+            element_local,
+            local_dofs,
+            dof_lo,
+            n_owned_dofs,
+            n_dofs: 3 * n_nodes,
+            partition,
+        }
+    }
+
+    /// Global DOF of component `c` of node `n`.
+    pub fn dof(&self, n: u32, c: usize) -> i32 {
+        3 * self.partition.dof_node[n as usize] as i32 + c as i32
+    }
+
+    /// Exact preallocation for the owned rows: for every owned DOF, the number of coupled
+    /// DOFs in the owned (diagonal) block and outside it. Rows couple through every element
+    /// that touches the node, whichever rank owns the element.
+    pub fn preallocation(&self, cells: &Cells, n_nodes: usize) -> (Vec<i32>, Vec<i32>) {
+        // node -> elements (CSR) for the owned nodes only
+        let mut is_owned = vec![false; n_nodes];
+        for &n in &self.owned_nodes {
+            is_owned[n as usize] = true;
+        }
+        let mut count = vec![0usize; n_nodes + 1];
+        for c in 0..cells.len() {
+            for &n in cells.nodes(c) {
+                if is_owned[n as usize] {
+                    count[n as usize + 1] += 1;
+                }
+            }
+        }
+        for i in 0..n_nodes {
+            count[i + 1] += count[i];
+        }
+        let mut fill = count.clone();
+        let mut adj = vec![0u32; count[n_nodes]];
+        for c in 0..cells.len() {
+            for &n in cells.nodes(c) {
+                if is_owned[n as usize] {
+                    adj[fill[n as usize]] = c as u32;
+                    fill[n as usize] += 1;
+                }
+            }
+        }
+        let me = self.rank as u32;
+        let mut d_nnz = Vec::with_capacity(self.n_owned_dofs);
+        let mut o_nnz = Vec::with_capacity(self.n_owned_dofs);
+        let mut neigh: Vec<u32> = Vec::new();
+        for &n in &self.owned_nodes {
+            neigh.clear();
+            for &c in &adj[count[n as usize]..count[n as usize + 1]] {
+                neigh.extend_from_slice(cells.nodes(c as usize));
+            }
+            neigh.sort_unstable();
+            neigh.dedup();
+            // a node no element touches still gets its diagonal entry (it is fixed by the solver)
+            let d = neigh
+                .iter()
+                .filter(|&&m| self.partition.node_owner[m as usize] == me)
+                .count()
+                .max(1);
+            let o = neigh.len() - d;
+            for _ in 0..3 {
+                d_nnz.push(3 * d as i32);
+                o_nnz.push(3 * o as i32);
+            }
+        }
+        (d_nnz, o_nnz)
+    }
+}

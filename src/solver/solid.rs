@@ -1,0 +1,130 @@
+//! Solid element blocks: a material model and the integration-point states of the elements
+//! of one block that this rank owns. The match on the model happens once per block; the
+//! element loop is monomorphized for each model ([`SolidModel`]).
+
+use super::qp_store::QpStore;
+use crate::element::hex8::Hex8Geometry;
+use crate::element::quadrature::HEX_GAUSS_POINTS;
+use crate::error::MaterialError;
+use crate::material::elastic::LinearElastic;
+use crate::material::{SolidModel, SolidParams};
+use crate::tensor::{Stress6, Tangent6};
+use nalgebra::{SMatrix, SVector};
+
+/// Element vector (24 DOFs).
+pub type Vector24 = SVector<f64, 24>;
+/// Element matrix (24 × 24).
+pub type Matrix24 = SMatrix<f64, 24, 24>;
+
+/// A model together with the states of its points.
+#[derive(Debug, Clone)]
+pub struct ModelStates<M: SolidModel> {
+    /// The model.
+    pub model: M,
+    /// 8 Gauss points per element, element-major.
+    pub store: QpStore<M::State>,
+}
+
+/// The solid models a block can use, each with its states.
+#[derive(Debug, Clone)]
+pub enum SolidBlock {
+    /// Linear elastic.
+    Elastic(ModelStates<LinearElastic>),
+}
+
+/// What an element evaluation returns.
+pub struct ElementResponse {
+    /// Internal force f_int (N).
+    pub f_int: Vector24,
+    /// Tangent stiffness (N/m), if asked for.
+    pub k: Option<Matrix24>,
+    /// Average stress over the Gauss points (Pa).
+    pub mean_stress: Stress6,
+}
+
+impl SolidBlock {
+    /// Builds the block's model with `n_elements` elements starting at zero stress.
+    pub fn new(params: &SolidParams, n_elements: usize) -> Result<SolidBlock, MaterialError> {
+        let n = n_elements * HEX_GAUSS_POINTS;
+        Ok(match params {
+            SolidParams::Elastic(p) => {
+                let model = LinearElastic::new(p);
+                let init = model.init_state(&Stress6::default())?;
+                SolidBlock::Elastic(ModelStates {
+                    model,
+                    store: QpStore::new(n, init),
+                })
+            }
+        })
+    }
+
+    /// Evaluates element `e` (block-local index) for the step displacement increment `d_u`:
+    /// updates its trial states from the committed ones (spec §8.1) and returns f_int and K.
+    pub fn evaluate(
+        &mut self,
+        e: usize,
+        geo: &Hex8Geometry,
+        d_u: &Vector24,
+        want_k: bool,
+    ) -> Result<ElementResponse, MaterialError> {
+        match self {
+            SolidBlock::Elastic(ms) => evaluate_element(ms, e, geo, d_u, want_k),
+        }
+    }
+
+    /// Mean committed stress over the Gauss points of element `e` (block-local index).
+    pub fn mean_stress(&self, e: usize) -> Stress6 {
+        match self {
+            SolidBlock::Elastic(ms) => mean_committed_stress(ms, e),
+        }
+    }
+
+    /// Accepts the trial states.
+    pub fn commit(&mut self) {
+        match self {
+            SolidBlock::Elastic(ms) => ms.store.commit(),
+        }
+    }
+
+    /// Discards the trial states.
+    pub fn revert(&mut self) {
+        match self {
+            SolidBlock::Elastic(ms) => ms.store.revert(),
+        }
+    }
+}
+
+fn evaluate_element<M: SolidModel>(
+    ms: &mut ModelStates<M>,
+    e: usize,
+    geo: &Hex8Geometry,
+    d_u: &Vector24,
+    want_k: bool,
+) -> Result<ElementResponse, MaterialError> {
+    let d_eps = geo.strain_increments(d_u);
+    let mut sig = [Stress6::default(); HEX_GAUSS_POINTS];
+    let mut tan = [Tangent6::default(); HEX_GAUSS_POINTS];
+    for q in 0..HEX_GAUSS_POINTS {
+        let i = e * HEX_GAUSS_POINTS + q;
+        let up = ms.model.update(&ms.store.committed[i], &d_eps[q])?;
+        sig[q] = M::stress(&up.state);
+        tan[q] = up.tangent;
+        ms.store.trial[i] = up.state;
+    }
+    let mean = sig.iter().fold(Stress6::default(), |a, s| {
+        Stress6(a.0 + s.0 / HEX_GAUSS_POINTS as f64)
+    });
+    Ok(ElementResponse {
+        f_int: geo.internal_force(&sig),
+        k: want_k.then(|| geo.stiffness(&tan)),
+        mean_stress: mean,
+    })
+}
+
+fn mean_committed_stress<M: SolidModel>(ms: &ModelStates<M>, e: usize) -> Stress6 {
+    let range = e * HEX_GAUSS_POINTS..(e + 1) * HEX_GAUSS_POINTS;
+    let sum = ms.store.committed[range]
+        .iter()
+        .fold(Stress6::default(), |a, s| Stress6(a.0 + M::stress(s).0));
+    Stress6(sum.0 / HEX_GAUSS_POINTS as f64)
+}

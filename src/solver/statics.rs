@@ -1,0 +1,467 @@
+//! Static equilibrium with Newton's method on the distributed system.
+//!
+//! ```text
+//! r(u) = f_ext − f_int(u) = 0,   f_int = Σ_e ∫ Bᵀ σ(Δε) dV,   K δu = r,   u ← u + δu
+//! ```
+//! Every iterate integrates the material from the committed state with the total step
+//! increment (spec §8.1); the states are committed only at convergence. Dirichlet DOFs are kept
+//! in the system (block size 3 for algebraic multigrid) with unit rows and columns.
+
+use super::discretization::Discretization;
+use super::solid::{SolidBlock, Vector24};
+use crate::element::hex8::{face_pressure_load, gravity_load, Hex8Geometry};
+use crate::linalg::petsc::{Gather, Ksp, Matrix, Petsc, SolveStats, Vector};
+use crate::mesh::Mesh;
+use crate::parallel::{sum_f64, sum_u64};
+use crate::scene::{Scene, Term};
+use crate::tensor::{Strain6, Stress6};
+use mpi::topology::SimpleCommunicator;
+use partition::Cells;
+use std::time::Instant;
+
+/// Failures of a static solve.
+#[derive(Debug, thiserror::Error)]
+pub enum SolveError {
+    /// PETSc failed.
+    #[error(transparent)]
+    Petsc(#[from] crate::linalg::petsc::PetscError),
+    /// A material update failed (element id and reason).
+    #[error("element {element}: {reason}")]
+    Material {
+        /// Input id of the element.
+        element: u64,
+        /// Why.
+        reason: String,
+    },
+    /// An element has a non-positive Jacobian.
+    #[error("element {element}: non-positive Jacobian")]
+    Geometry {
+        /// Input id of the element.
+        element: u64,
+    },
+    /// The linear solver diverged.
+    #[error("linear solver diverged (PETSc reason {reason}) after {iterations} iterations")]
+    Linear {
+        /// PETSc's converged reason.
+        reason: i32,
+        /// Iterations done.
+        iterations: u32,
+    },
+    /// Newton did not converge.
+    #[error("Newton did not converge in {iterations} iterations (relative residual {residual:.3e})")]
+    Newton {
+        /// Iterations done.
+        iterations: u32,
+        /// Last relative residual.
+        residual: f64,
+    },
+}
+
+/// Counters and timings of a solve.
+#[derive(Debug, Clone, Default, serde::Serialize)]
+pub struct SolveReport {
+    /// Newton iterations.
+    pub newton_iterations: u32,
+    /// KSP iterations of each linear solve.
+    pub ksp_iterations: Vec<u32>,
+    /// Relative residual after each Newton iteration.
+    pub residuals: Vec<f64>,
+    /// Wall time in assembly (s).
+    pub assembly_seconds: f64,
+    /// Wall time in linear solves (s).
+    pub solve_seconds: f64,
+}
+
+/// Rank-local results in input order of the owned nodes and elements.
+#[derive(Debug, Clone, Default)]
+pub struct LocalResults {
+    /// Owned nodes (input indices).
+    pub nodes: Vec<u32>,
+    /// Displacement of each owned node (m).
+    pub displacement: Vec<[f64; 3]>,
+    /// Reaction force of each owned node (N), zero where no component is fixed.
+    pub reaction: Vec<[f64; 3]>,
+    /// Owned elements (input indices).
+    pub elements: Vec<u32>,
+    /// Mean stress of each owned element (Pa, tension positive).
+    pub stress: Vec<Stress6>,
+    /// Mean strain of each owned element (engineering shear, tension positive).
+    pub strain: Vec<Strain6>,
+}
+
+/// The static problem on this rank: discretization, PETSc objects and material states.
+pub struct StaticProblem<'a> {
+    scene: &'a Scene,
+    disc: Discretization,
+    blocks: Vec<SolidBlock>,
+    /// For every owned element: (block, index within the block's owned elements).
+    elem_block: Vec<(usize, usize)>,
+    /// Fixed DOFs owned by this rank: (global dof, prescribed value).
+    fixed: Vec<(i32, f64)>,
+    k: Matrix,
+    u: Vector,
+    u_committed: Vector,
+    gather: Gather,
+    gather_committed: Gather,
+    ksp: Ksp,
+    /// Diagonal value put on Dirichlet rows: the mean diagonal of the stiffness (same on every
+    /// rank), so the constrained rows do not spoil the multigrid smoothers' scaling.
+    dirichlet_diag: f64,
+}
+
+/// Cells (8 nodes each) of a mesh, for partitioning and indexing.
+pub fn mesh_cells(mesh: &Mesh) -> Cells {
+    let mut cells = Cells::default();
+    for e in &mesh.elements {
+        cells.push(&e.nodes);
+    }
+    cells
+}
+
+impl<'a> StaticProblem<'a> {
+    /// Sets up the rank-local problem for a given element partition.
+    pub fn new(
+        petsc: &Petsc,
+        scene: &'a Scene,
+        cells: Cells,
+        disc: Discretization,
+    ) -> Result<Self, SolveError> {
+        let mesh = &scene.mesh;
+        let n_nodes = mesh.num_nodes();
+        // blocks and the block-local numbering of owned elements
+        let mut per_block = vec![0usize; mesh.blocks.len()];
+        let elem_block: Vec<(usize, usize)> = disc
+            .owned_elements
+            .iter()
+            .map(|&e| {
+                let b = mesh.elements[e as usize].block as usize;
+                per_block[b] += 1;
+                (b, per_block[b] - 1)
+            })
+            .collect();
+        let blocks = scene
+            .block_materials
+            .iter()
+            .zip(&per_block)
+            .map(|(p, &n)| SolidBlock::new(p, n))
+            .collect::<Result<Vec<_>, _>>()
+            .map_err(|e| SolveError::Material {
+                element: 0,
+                reason: e.reason,
+            })?;
+
+        // fixed DOFs owned here; nodes no element touches are fixed too
+        let mut touched = vec![false; n_nodes];
+        for &n in &cells.cell_nodes {
+            touched[n as usize] = true;
+        }
+        let me = disc.rank as u32;
+        let mut fixed: Vec<(i32, f64)> = scene
+            .fixed
+            .iter()
+            .filter(|(n, _, _)| disc.partition.node_owner[*n as usize] == me)
+            .map(|&(n, c, v)| (disc.dof(n, c as usize), v))
+            .collect();
+        for &n in &disc.owned_nodes {
+            if !touched[n as usize] {
+                fixed.extend((0..3).map(|c| (disc.dof(n, c), 0.0)));
+            }
+        }
+        fixed.sort_by_key(|f| f.0);
+        fixed.dedup_by_key(|f| f.0);
+
+        let (d_nnz, o_nnz) = disc.preallocation(&cells, n_nodes);
+        let mut k = Matrix::aij(petsc, disc.n_owned_dofs, 3, &d_nnz, &o_nnz)?;
+        let u = Vector::mpi(petsc, disc.n_owned_dofs, 3)?;
+        let mut coords = u.duplicate()?;
+        coords.write(|c| {
+            for (i, &n) in disc.owned_nodes.iter().enumerate() {
+                c[3 * i..3 * i + 3].copy_from_slice(&mesh.coords[n as usize]);
+            }
+        })?;
+        k.set_rigid_body_near_null_space(&coords)?;
+        let mut u = u;
+        u.set_all(0.0)?;
+        let mut u_committed = u.duplicate()?;
+        u_committed.set_all(0.0)?;
+        let gather = Gather::new(&u, &disc.local_dofs)?;
+        let gather_committed = Gather::new(&u, &disc.local_dofs)?;
+        let ksp = Ksp::new(petsc, scene.file.solver.rtol, scene.file.solver.max_iterations)?;
+        Ok(StaticProblem {
+            scene,
+            disc,
+            blocks,
+            elem_block,
+            fixed,
+            k,
+            u,
+            u_committed,
+            gather,
+            gather_committed,
+            ksp,
+            dirichlet_diag: 1.0,
+        })
+    }
+
+    /// The rank-local indexing.
+    pub fn discretization(&self) -> &Discretization {
+        &self.disc
+    }
+
+    /// Assembles the external force of all load terms at load factor `lambda`.
+    fn external_force(&self, lambda: f64, f: &mut Vector) -> Result<(), SolveError> {
+        let mesh = &self.scene.mesh;
+        f.set_all(0.0)?;
+        let mut owned_elem = vec![false; mesh.elements.len()];
+        for &e in &self.disc.owned_elements {
+            owned_elem[e as usize] = true;
+        }
+        let add = |e: usize, fe: &Vector24, f: &mut Vector| -> Result<(), SolveError> {
+            let rows: Vec<i32> = mesh.elements[e]
+                .nodes
+                .iter()
+                .flat_map(|&n| (0..3).map(move |c| (n, c)))
+                .map(|(n, c)| self.disc.dof(n, c))
+                .collect();
+            let vals: Vec<f64> = fe.iter().map(|v| v * lambda).collect();
+            f.set_values(&rows, &vals, true)?;
+            Ok(())
+        };
+        for term in &self.scene.terms {
+            match term {
+                Term::Gravity { g } => {
+                    for &e in &self.disc.owned_elements {
+                        let e = e as usize;
+                        let rho = self.scene.block_materials[mesh.elements[e].block as usize].density();
+                        add(e, &gravity_load(&mesh.element_coords(e), rho, g), f)?;
+                    }
+                }
+                Term::Pressure { faces, value } => {
+                    for face in &mesh.face_sets[faces] {
+                        if owned_elem[face.element as usize] {
+                            let e = face.element as usize;
+                            let fe = face_pressure_load(
+                                &mesh.element_coords(e),
+                                face.local_face as usize,
+                                &[*value; 4],
+                            );
+                            add(e, &fe, f)?;
+                        }
+                    }
+                }
+                Term::Hydrostatic {
+                    faces,
+                    level,
+                    unit_weight,
+                } => {
+                    for face in &mesh.face_sets[faces] {
+                        if owned_elem[face.element as usize] {
+                            let e = face.element as usize;
+                            let p = face
+                                .nodes
+                                .map(|n| unit_weight * (level - mesh.coords[n as usize][2]).max(0.0));
+                            let fe =
+                                face_pressure_load(&mesh.element_coords(e), face.local_face as usize, &p);
+                            add(e, &fe, f)?;
+                        }
+                    }
+                }
+            }
+        }
+        f.assemble()?;
+        Ok(())
+    }
+
+    /// Updates the trial states for the current `u` and assembles f_int and (optionally) K.
+    fn assemble(&mut self, f_int: &mut Vector, want_k: bool) -> Result<(), SolveError> {
+        let mesh = &self.scene.mesh;
+        let u_loc: Vec<f64> = self.gather.gather(&self.u)?.read(|s| s.to_vec())?;
+        let u0_loc: Vec<f64> = self
+            .gather_committed
+            .gather(&self.u_committed)?
+            .read(|s| s.to_vec())?;
+        f_int.set_all(0.0)?;
+        if want_k {
+            self.k.zero()?;
+        }
+        let mut rows = [0i32; 24];
+        let mut kt = [0.0f64; 576];
+        let (mut diag_sum, mut diag_n) = (0.0f64, 0u64);
+        for (i, &e) in self.disc.owned_elements.iter().enumerate() {
+            let e = e as usize;
+            let x = mesh.element_coords(e);
+            let geo = Hex8Geometry::new(&x).map_err(|_| SolveError::Geometry {
+                element: mesh.elements[e].id,
+            })?;
+            let loc = &self.disc.element_local[i];
+            let mut d_u = Vector24::zeros();
+            for a in 0..8 {
+                for c in 0..3 {
+                    let l = 3 * loc[a] as usize + c;
+                    d_u[3 * a + c] = u_loc[l] - u0_loc[l];
+                    rows[3 * a + c] = self.disc.local_dofs[l];
+                }
+            }
+            let (b, be) = self.elem_block[i];
+            let resp = self.blocks[b]
+                .evaluate(be, &geo, &d_u, want_k)
+                .map_err(|m| SolveError::Material {
+                    element: mesh.elements[e].id,
+                    reason: m.reason,
+                })?;
+            f_int.set_values(&rows, resp.f_int.as_slice(), true)?;
+            if let Some(ke) = resp.k {
+                diag_sum += ke.diagonal().iter().map(|v| v.abs()).sum::<f64>();
+                diag_n += 24;
+                // nalgebra is column-major: the transpose's storage is the row-major block
+                kt.copy_from_slice(ke.transpose().as_slice());
+                self.k.add_values(&rows, &rows, &kt)?;
+            }
+        }
+        f_int.assemble()?;
+        if want_k {
+            self.k.assemble()?;
+            let world = SimpleCommunicator::world();
+            let (s, n) = (sum_f64(&world, diag_sum), sum_u64(&world, diag_n));
+            self.dirichlet_diag = if n > 0 && s > 0.0 { s / n as f64 } else { 1.0 };
+        }
+        Ok(())
+    }
+
+    /// Solves one load step to equilibrium at load factor `lambda` (loads and prescribed
+    /// displacements scaled by it) and commits the states.
+    pub fn solve_step(&mut self, lambda: f64, report: &mut SolveReport) -> Result<(), SolveError> {
+        let opts = &self.scene.file.solver;
+        let mut f_ext = self.u.duplicate()?;
+        self.external_force(lambda, &mut f_ext)?;
+        let mut f_int = self.u.duplicate()?;
+        let mut r = self.u.duplicate()?;
+        let mut du = self.u.duplicate()?;
+        let rows: Vec<i32> = self.fixed.iter().map(|f| f.0).collect();
+        let mut ksp_ready = false;
+        for it in 0..=opts.newton_max_iterations {
+            let t0 = Instant::now();
+            self.assemble(&mut f_int, true)?;
+            report.assembly_seconds += t0.elapsed().as_secs_f64();
+            // r = f_ext − f_int on free DOFs; the reference is max(|f_ext|, |f_int|)
+            r.copy_from(&f_ext)?;
+            r.axpy(-1.0, &f_int)?;
+            let lo = self.disc.dof_lo;
+            let target: Vec<(usize, f64)> = self
+                .fixed
+                .iter()
+                .map(|&(d, v)| (d as usize - lo, v * lambda))
+                .collect();
+            let u_now: Vec<f64> = self.u.read(|s| s.to_vec())?;
+            du.set_all(0.0)?;
+            du.write(|d| {
+                for &(l, v) in &target {
+                    d[l] = v - u_now[l];
+                }
+            })?;
+            r.write(|s| {
+                for &(l, _) in &target {
+                    s[l] = 0.0;
+                }
+            })?;
+            let r_norm = r.norm2()?;
+            let ref_norm = f_ext.norm2()?.max(f_int.norm2()?).max(1e-300);
+            let rel = r_norm / ref_norm;
+            report.residuals.push(rel);
+            if it > 0 && rel <= opts.newton_tol {
+                report.newton_iterations += it;
+                for b in &mut self.blocks {
+                    b.commit();
+                }
+                self.u_committed.copy_from(&self.u)?;
+                return Ok(());
+            }
+            if it == opts.newton_max_iterations {
+                break;
+            }
+            // K δu = r with δu prescribed on the fixed DOFs
+            self.k
+                .zero_rows_columns(&rows, self.dirichlet_diag, &du, &mut r)?;
+            if !ksp_ready {
+                self.ksp.set_operator(&self.k)?;
+                ksp_ready = true;
+            }
+            let t1 = Instant::now();
+            let stats: SolveStats = self.ksp.solve(&r, &mut du)?;
+            report.solve_seconds += t1.elapsed().as_secs_f64();
+            report.ksp_iterations.push(stats.iterations);
+            if stats.reason < 0 {
+                return Err(SolveError::Linear {
+                    reason: stats.reason,
+                    iterations: stats.iterations,
+                });
+            }
+            self.u.axpy(1.0, &du)?;
+            // prescribed values exactly (no round-off from u + (v − u))
+            self.u.write(|s| {
+                for &(l, v) in &target {
+                    s[l] = v;
+                }
+            })?;
+        }
+        for b in &mut self.blocks {
+            b.revert();
+        }
+        let residual = report.residuals.last().copied().unwrap_or(f64::NAN);
+        Err(SolveError::Newton {
+            iterations: opts.newton_max_iterations,
+            residual,
+        })
+    }
+
+    /// Collects the rank-local results (owned nodes and elements) at the committed state.
+    pub fn results(&mut self) -> Result<LocalResults, SolveError> {
+        let mesh = &self.scene.mesh;
+        let mut f_int = self.u.duplicate()?;
+        self.assemble(&mut f_int, false)?;
+        let mut f_ext = self.u.duplicate()?;
+        self.external_force(1.0, &mut f_ext)?;
+        let mut reac = f_int;
+        reac.axpy(-1.0, &f_ext)?;
+        let reac_all: Vec<f64> = reac.read(|s| s.to_vec())?;
+        let u_own: Vec<f64> = self.u.read(|s| s.to_vec())?;
+        let lo = self.disc.dof_lo;
+        let mut is_fixed = vec![false; self.disc.n_owned_dofs];
+        for &(d, _) in &self.fixed {
+            is_fixed[d as usize - lo] = true;
+        }
+        let mut out = LocalResults {
+            nodes: self.disc.owned_nodes.clone(),
+            ..Default::default()
+        };
+        for i in 0..self.disc.owned_nodes.len() {
+            out.displacement
+                .push([u_own[3 * i], u_own[3 * i + 1], u_own[3 * i + 2]]);
+            out.reaction.push(std::array::from_fn(|c| {
+                if is_fixed[3 * i + c] {
+                    reac_all[3 * i + c]
+                } else {
+                    0.0
+                }
+            }));
+        }
+        let u_loc: Vec<f64> = self.gather.gather(&self.u)?.read(|s| s.to_vec())?;
+        out.elements = self.disc.owned_elements.clone();
+        for (i, &e) in self.disc.owned_elements.iter().enumerate() {
+            let geo =
+                Hex8Geometry::new(&mesh.element_coords(e as usize)).map_err(|_| SolveError::Geometry {
+                    element: mesh.elements[e as usize].id,
+                })?;
+            let loc = &self.disc.element_local[i];
+            let ue = Vector24::from_fn(|k, _| u_loc[3 * loc[k / 3] as usize + k % 3]);
+            let eps = geo.strain_increments(&ue);
+            out.strain.push(
+                eps.iter()
+                    .fold(Strain6::default(), |a, s| Strain6(a.0 + s.0 / 8.0)),
+            );
+            let (b, be) = self.elem_block[i];
+            out.stress.push(self.blocks[b].mean_stress(be));
+        }
+        Ok(out)
+    }
+}
