@@ -192,7 +192,7 @@ fn check_divisions(divisions: [usize; 3], layers: usize) -> Result<(), MeshError
     if divisions.contains(&0) {
         return Err(invalid(
             "divisions",
-            format!("{divisions:?}: every division must be ≥ 1"),
+            format!("{divisions:?}: every division must be at least 1"),
         ));
     }
     if layers == 0 || layers > divisions[2] {
@@ -205,7 +205,7 @@ fn check_divisions(divisions: [usize; 3], layers: usize) -> Result<(), MeshError
     if nodes > u32::MAX as u128 {
         return Err(invalid(
             "divisions",
-            format!("{divisions:?} gives {nodes} nodes (> 2³²)"),
+            format!("{divisions:?} gives {nodes} nodes (more than 2^32)"),
         ));
     }
     Ok(())
@@ -681,6 +681,12 @@ mod tests {
         let start = std::time::Instant::now();
         let mesh = dam_mesh(&spec).expect("dam");
         let secs = start.elapsed().as_secs_f64();
+        eprintln!(
+            "dam mesh {:?}: {} DOFs, {} elements in {secs:.3} s",
+            spec.divisions,
+            spec.num_dofs(),
+            mesh.elements.len()
+        );
         assert_eq!(mesh.num_nodes() * 3, spec.num_dofs());
         assert!(secs < 3.0, "{secs} s for {} DOFs", spec.num_dofs());
     }

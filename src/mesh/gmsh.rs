@@ -745,3 +745,328 @@ impl<'a> Reader<'a> {
         Ok(())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::element::hex8::{face_coords, quad_area_vector};
+
+    const V41: &str = include_str!("../../inputs/meshes/two_hex_v41.msh");
+    const V22: &str = include_str!("../../inputs/meshes/two_hex_v22.msh");
+
+    fn meshes_dir() -> std::path::PathBuf {
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("inputs/meshes")
+    }
+
+    /// 1-based number of the (unique) line equal to `needle`.
+    fn line_of(text: &str, needle: &str) -> usize {
+        let hits: Vec<usize> = text
+            .lines()
+            .enumerate()
+            .filter(|(_, l)| l.trim() == needle)
+            .map(|(i, _)| i + 1)
+            .collect();
+        assert_eq!(hits.len(), 1, "line '{needle}' is not unique");
+        hits[0]
+    }
+
+    /// `text` with the (unique) line `old` replaced by `new`.
+    fn replace_line(text: &str, old: &str, new: &str) -> String {
+        line_of(text, old);
+        text.lines()
+            .map(|l| if l.trim() == old { new } else { l })
+            .collect::<Vec<_>>()
+            .join("\n")
+    }
+
+    fn error_of(text: &str, file: &str) -> String {
+        let err = parse_gmsh(text, file).expect_err("the mesh must be rejected");
+        err.to_string()
+    }
+
+    fn assert_names(msg: &str, parts: &[&str]) {
+        for p in parts {
+            assert!(msg.contains(p), "message '{msg}' does not contain '{p}'");
+        }
+    }
+
+    #[test]
+    fn both_formats_give_the_same_mesh() {
+        let m41 = read_gmsh(&meshes_dir().join("two_hex_v41.msh")).expect("MSH 4.1");
+        let m22 = read_gmsh(&meshes_dir().join("two_hex_v22.msh")).expect("MSH 2.2");
+        assert_eq!(m41, m22);
+        let m = m41;
+        m.validate().expect("valid");
+        assert_eq!(m.node_ids, (1..=12).collect::<Vec<u64>>());
+        assert_eq!(m.coords[10], [1.0, 1.0, 1.0]);
+        let blocks: Vec<&str> = m.blocks.iter().map(|b| b.name.as_str()).collect();
+        assert_eq!(blocks, ["left", "right"]);
+        assert_eq!(m.elements.len(), 2);
+        assert_eq!((m.elements[0].id, m.elements[0].block), (8, 0));
+        assert_eq!((m.elements[1].id, m.elements[1].block), (9, 1));
+        assert_eq!(m.elements[1].nodes, [1, 2, 5, 4, 7, 8, 11, 10]);
+        let sets: Vec<(&str, Vec<u32>)> = vec![
+            ("base", vec![0, 1, 2, 3, 4, 5]),
+            ("corner", vec![0]),
+            ("interface", vec![1, 4, 7, 10]),
+            ("top_edge", vec![9, 10, 11]),
+            ("xmax", vec![2, 5, 8, 11]),
+        ];
+        assert_eq!(m.node_sets.len(), sets.len());
+        for (name, nodes) in sets {
+            assert_eq!(m.node_sets[name], nodes, "node set {name}");
+        }
+        let face = |element, local_face, nodes| Face {
+            element,
+            local_face,
+            nodes,
+        };
+        assert_eq!(m.face_sets.len(), 3);
+        assert_eq!(
+            m.face_sets["base"],
+            [face(0, 0, [0, 3, 4, 1]), face(1, 0, [1, 4, 5, 2])]
+        );
+        assert_eq!(m.face_sets["xmax"], [face(1, 3, [2, 5, 11, 8])]);
+        // The internal quad's right-hand normal is +x: it is the x = 1 face of `left`.
+        assert_eq!(m.face_sets["interface"], [face(0, 3, [1, 4, 10, 7])]);
+    }
+
+    #[test]
+    fn face_sets_have_outward_normals() {
+        let m = parse_gmsh(V41, "two_hex_v41.msh").expect("mesh");
+        for (name, normal) in [("base", [0.0, 0.0, -1.0]), ("xmax", [1.0, 0.0, 0.0])] {
+            for f in &m.face_sets[name] {
+                let x = m.element_coords(f.element as usize);
+                let a = quad_area_vector(&face_coords(&x, f.local_face as usize));
+                assert_eq!(a, normal, "{name}");
+                let direct = quad_area_vector(&f.nodes.map(|n| m.coords[n as usize]));
+                assert_eq!(direct, normal, "{name}: stored node order");
+            }
+        }
+    }
+
+    #[test]
+    fn repeated_msh2_lines_add_group_memberships_and_unused_elements_are_ignored() {
+        let text = V22.replace("$Elements\n9\n", "$Elements\n11\n").replace(
+            "$EndElements",
+            "6 3 2 3 2 3 6 12 9\n10 1 2 0 1 1 2\n$EndElements\n$Comments\nanything\n$EndComments",
+        );
+        let m = parse_gmsh(&text, "repeat.msh").expect("mesh");
+        assert_eq!(m.face_sets["base"].len(), 3);
+        assert_eq!(m.face_sets["base"][2], m.face_sets["xmax"][0]);
+        assert_eq!(m.node_sets["base"], [0, 1, 2, 3, 4, 5, 8, 11]);
+    }
+
+    #[test]
+    fn missing_file_is_named() {
+        let path = meshes_dir().join("no_such_mesh.msh");
+        let msg = read_gmsh(&path).expect_err("missing").to_string();
+        assert_names(&msg, &["no_such_mesh.msh", "cannot read"]);
+    }
+
+    #[test]
+    fn malformed_number_and_truncated_section_are_located() {
+        let text = replace_line(V22, "5 1 1 0", "5 1 abc 0");
+        let msg = error_of(&text, "bad.msh");
+        assert_names(&msg, &[&format!("bad.msh:{}", line_of(V22, "5 1 1 0")), "'abc'"]);
+        let cut = &V41[..V41.find("3 2 5 1").expect("block")];
+        let msg = error_of(cut, "cut.msh");
+        assert_names(&msg, &["cut.msh:", "end of file inside section $Elements"]);
+    }
+
+    #[test]
+    fn unsupported_version_is_rejected() {
+        let text = replace_line(V41, "4.1 0 8", "4.0 0 8");
+        let msg = error_of(&text, "old.msh");
+        assert_names(&msg, &["old.msh:2", "version 4.0"]);
+    }
+
+    #[test]
+    fn binary_file_is_rejected() {
+        let text = replace_line(V41, "4.1 0 8", "4.1 1 8");
+        let msg = error_of(&text, "bin.msh");
+        assert_names(&msg, &["bin.msh:2", "binary"]);
+    }
+
+    #[test]
+    fn unsupported_element_type_in_physical_volume_is_named() {
+        let old = "9 5 2 7 2 2 3 6 5 8 9 12 11";
+        let text = replace_line(V22, old, "9 6 2 7 2 2 3 6 8 9 12");
+        let msg = error_of(&text, "prism.msh");
+        assert_names(
+            &msg,
+            &[
+                &format!("prism.msh:{}", line_of(V22, old)),
+                "type 6",
+                "element 9",
+                "'right'",
+            ],
+        );
+    }
+
+    #[test]
+    fn triangle_in_physical_surface_is_rejected() {
+        let old = "6 3 2 4 2 3 6 12 9";
+        let text = replace_line(V22, old, "6 2 2 4 2 3 6 12");
+        let msg = error_of(&text, "tri.msh");
+        assert_names(
+            &msg,
+            &[
+                &format!("tri.msh:{}", line_of(V22, old)),
+                "type 2",
+                "element 6",
+                "'xmax'",
+            ],
+        );
+    }
+
+    #[test]
+    fn duplicate_node_id_is_located() {
+        let text = replace_line(V41, "12", "11");
+        let msg = error_of(&text, "dup.msh");
+        assert_names(
+            &msg,
+            &[&format!("dup.msh:{}", line_of(V41, "12")), "duplicate node id 11"],
+        );
+    }
+
+    #[test]
+    fn duplicate_element_id_is_located() {
+        let old = "9 5 2 7 2 2 3 6 5 8 9 12 11";
+        let text = replace_line(V22, old, "8 5 2 7 2 2 3 6 5 8 9 12 11");
+        let msg = error_of(&text, "dup.msh");
+        assert_names(
+            &msg,
+            &[
+                &format!("dup.msh:{}", line_of(V22, old)),
+                "duplicate element id 8",
+            ],
+        );
+    }
+
+    #[test]
+    fn unknown_node_is_named() {
+        let old = "9 2 3 6 5 8 9 12 11";
+        let text = replace_line(V41, old, "9 2 3 6 5 8 9 13 11");
+        let msg = error_of(&text, "unknown.msh");
+        assert_names(
+            &msg,
+            &[
+                &format!("unknown.msh:{}", line_of(V41, old)),
+                "element 9",
+                "unknown node 13",
+            ],
+        );
+    }
+
+    #[test]
+    fn inverted_element_is_located() {
+        let old = "9 5 2 7 2 2 3 6 5 8 9 12 11";
+        let text = replace_line(V22, old, "9 5 2 7 2 8 9 12 11 2 3 6 5");
+        let msg = error_of(&text, "inv.msh");
+        assert_names(
+            &msg,
+            &[&format!("inv.msh:{}", line_of(V22, old)), "element 9 is inverted"],
+        );
+        // Only one corner folded over: caught at that corner.
+        let text = replace_line(V22, "9 2 0 1", "9 0.4 0 0.2");
+        let msg = error_of(&text, "fold.msh");
+        assert_names(
+            &msg,
+            &[
+                &format!("fold.msh:{}", line_of(V22, old)),
+                "element 9 is inverted",
+                "corner node",
+            ],
+        );
+    }
+
+    #[test]
+    fn degenerate_elements_are_located() {
+        let old = "9 5 2 7 2 2 3 6 5 8 9 12 11";
+        let text = replace_line(V22, old, "9 5 2 7 2 2 3 6 5 8 9 12 12");
+        let msg = error_of(&text, "rep.msh");
+        assert_names(
+            &msg,
+            &[
+                &format!("rep.msh:{}", line_of(V22, old)),
+                "element 9 is degenerate",
+                "node 12 appears twice",
+            ],
+        );
+        // A flat element: all nodes within 1e-12 m of the plane z = 0.
+        let mut flat = V22.to_string();
+        for (id, xy) in [(7, "0 0"), (8, "1 0"), (10, "0 1"), (11, "1 1")] {
+            flat = replace_line(&flat, &format!("{id} {xy} 1"), &format!("{id} {xy} 1e-12"));
+        }
+        let msg = error_of(&flat, "flat.msh");
+        assert_names(
+            &msg,
+            &[
+                &format!("flat.msh:{}", line_of(V22, "8 5 2 6 1 1 2 5 4 7 8 11 10")),
+                "element 8 is degenerate",
+                "volume",
+            ],
+        );
+    }
+
+    #[test]
+    fn unnamed_physical_group_is_located_in_both_formats() {
+        let text = replace_line(V22, "3 7 \"right\"", "").replace("$PhysicalNames\n7", "$PhysicalNames\n6");
+        let msg = error_of(&text, "un22.msh");
+        let line = line_of(V22, "9 5 2 7 2 2 3 6 5 8 9 12 11");
+        assert_names(
+            &msg,
+            &[&format!("un22.msh:{line}"), "dimension 3, tag 7", "no name"],
+        );
+        let text = replace_line(V41, "3 7 \"right\"", "").replace("$PhysicalNames\n7", "$PhysicalNames\n6");
+        let msg = error_of(&text, "un41.msh");
+        let line = line_of(V41, "2 1 0 0 2 1 1 1 7 0");
+        assert_names(&msg, &[&format!("un41.msh:{line}"), "dimension 3, tag 7"]);
+    }
+
+    #[test]
+    fn hexahedron_without_physical_volume_is_named() {
+        let old = "9 5 2 7 2 2 3 6 5 8 9 12 11";
+        let text = replace_line(V22, old, "9 5 2 0 2 2 3 6 5 8 9 12 11");
+        let msg = error_of(&text, "nophys.msh");
+        assert_names(
+            &msg,
+            &[
+                &format!("nophys.msh:{}", line_of(V22, old)),
+                "hexahedron 9",
+                "no physical volume",
+            ],
+        );
+        let text = replace_line(V41, "2 1 0 0 2 1 1 1 7 0", "2 1 0 0 2 1 1 0 0");
+        let msg = error_of(&text, "nophys41.msh");
+        let line = line_of(V41, "9 2 3 6 5 8 9 12 11");
+        assert_names(&msg, &[&format!("nophys41.msh:{line}"), "hexahedron 9"]);
+    }
+
+    #[test]
+    fn element_in_two_physical_volumes_is_rejected() {
+        let text = replace_line(V41, "2 1 0 0 2 1 1 1 7 0", "2 1 0 0 2 1 1 2 7 6 0");
+        let msg = error_of(&text, "two.msh");
+        let line = line_of(V41, "9 2 3 6 5 8 9 12 11");
+        assert_names(
+            &msg,
+            &[&format!("two.msh:{line}"), "element 9", "'right'", "'left'"],
+        );
+    }
+
+    #[test]
+    fn quad_that_bounds_no_hexahedron_is_named() {
+        let old = "6 3 2 4 2 3 6 12 9";
+        let text = replace_line(V22, old, "6 3 2 4 2 3 6 12 11");
+        let msg = error_of(&text, "face.msh");
+        assert_names(
+            &msg,
+            &[
+                &format!("face.msh:{}", line_of(V22, old)),
+                "quadrangle 6",
+                "'xmax'",
+            ],
+        );
+    }
+}

@@ -76,7 +76,7 @@ pub fn check_element_geometry(
         return Err(MeshError::DegenerateElement {
             at: at(),
             element_id,
-            detail: format!("volume {vol:.3e} m³ is zero for its longest edge {edge:.3e} m"),
+            detail: format!("volume {vol:.3e} m^3 is zero for its longest edge {edge:.3e} m"),
         });
     }
     let (corners, gauss) = jacobian_determinants(x);
@@ -86,7 +86,7 @@ pub fn check_element_geometry(
             at: at(),
             element_id,
             detail: format!(
-                "Jacobian determinant {:.3e} at corner node {} (local node {a}), volume {vol:.3e} m³",
+                "Jacobian determinant {:.3e} at corner node {} (local node {a}), volume {vol:.3e} m^3",
                 corners[a], node_ids[nodes[a] as usize]
             ),
         });
@@ -96,7 +96,7 @@ pub fn check_element_geometry(
             at: at(),
             element_id,
             detail: format!(
-                "Jacobian determinant {:.3e} at Gauss point {q}, volume {vol:.3e} m³",
+                "Jacobian determinant {:.3e} at Gauss point {q}, volume {vol:.3e} m^3",
                 gauss[q]
             ),
         });
