@@ -831,6 +831,47 @@ mod tests {
         assert_eq!(m.face_sets["interface"], [face(0, 3, [1, 4, 10, 7])]);
     }
 
+    /// Files written by Gmsh 4.15 itself (`inputs/meshes/gmsh_box.py`): two glued boxes.
+    #[test]
+    fn files_written_by_gmsh_are_read_identically_in_both_formats() {
+        let m41 = read_gmsh(&meshes_dir().join("gmsh_box_v41.msh")).expect("MSH 4.1");
+        let m22 = read_gmsh(&meshes_dir().join("gmsh_box_v22.msh")).expect("MSH 2.2");
+        assert_eq!(m41, m22);
+        let m = m41;
+        m.validate().expect("valid");
+        assert_eq!(m.num_nodes(), 63);
+        let blocks: Vec<&str> = m.blocks.iter().map(|b| b.name.as_str()).collect();
+        assert_eq!(blocks, ["fill", "toe"]);
+        let in_block = |b: u32| m.elements.iter().filter(|e| e.block == b).count();
+        assert_eq!((in_block(0), in_block(1)), (16, 8));
+        let volume: f64 = (0..m.elements.len())
+            .map(|e| crate::element::hex8::volume(&m.element_coords(e)))
+            .sum();
+        assert!((volume - 3.0).abs() < 1e-12, "volume {volume}");
+        assert_eq!(m.node_sets["origin"].len(), 1);
+        assert_eq!(m.coords[m.node_sets["origin"][0] as usize], [0.0, 0.0, 0.0]);
+        assert_eq!(m.node_sets["crest_line"].len(), 3);
+        assert_eq!(m.node_sets["base"].len(), 7 * 3);
+        for (name, count, normal) in [("base", 12, [0.0, 0.0, -1.0]), ("upstream", 4, [-1.0, 0.0, 0.0])] {
+            let faces = &m.face_sets[name];
+            assert_eq!(faces.len(), count, "{name}");
+            for f in faces {
+                let a = quad_area_vector(&f.nodes.map(|n| m.coords[n as usize]));
+                let n = a.map(|v| v / 0.25);
+                assert!((0..3).all(|i| (n[i] - normal[i]).abs() < 1e-12), "{name}: {a:?}");
+            }
+        }
+        // The internal surface: every quad goes to the same side, consistently oriented.
+        let joint = &m.face_sets["joint"];
+        assert_eq!(joint.len(), 4);
+        let side = m.elements[joint[0].element as usize].block;
+        for f in joint {
+            assert_eq!(m.elements[f.element as usize].block, side);
+            let a = quad_area_vector(&f.nodes.map(|n| m.coords[n as usize]));
+            assert!((a[0].abs() - 0.25).abs() < 1e-12 && a[0].signum() == if side == 0 { 1.0 } else { -1.0 });
+        }
+    }
+
     #[test]
     fn face_sets_have_outward_normals() {
         let m = parse_gmsh(V41, "two_hex_v41.msh").expect("mesh");

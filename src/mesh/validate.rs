@@ -199,3 +199,80 @@ impl Mesh {
         Ok(())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::mesh::generate::{box_mesh, BoxSpec};
+    use crate::mesh::Mesh;
+
+    fn two_by_one() -> Mesh {
+        box_mesh(&BoxSpec {
+            size: [2.0, 1.0, 1.0],
+            divisions: [2, 1, 1],
+            ..BoxSpec::default()
+        })
+        .expect("box")
+    }
+
+    fn message(mesh: &Mesh) -> String {
+        mesh.validate().expect_err("invalid mesh").to_string()
+    }
+
+    #[test]
+    fn generated_box_is_valid() {
+        two_by_one().validate().expect("valid");
+    }
+
+    #[test]
+    fn structural_defects_are_reported() {
+        let mut m = two_by_one();
+        m.node_ids[3] = m.node_ids[0];
+        assert!(message(&m).contains("duplicate node id 1"), "{}", message(&m));
+
+        let mut m = two_by_one();
+        m.elements[1].id = 1;
+        assert!(message(&m).contains("duplicate element id 1"));
+
+        let mut m = two_by_one();
+        m.elements[0].nodes[5] = 99;
+        assert!(message(&m).contains("element 1 references node index 99"));
+
+        let mut m = two_by_one();
+        m.elements[0].block = 7;
+        assert!(message(&m).contains("block index 7"));
+
+        let mut m = two_by_one();
+        m.node_sets.get_mut("xmin").expect("set").reverse();
+        assert!(message(&m).contains("node set 'xmin' is not sorted"));
+
+        let mut m = two_by_one();
+        m.face_sets.get_mut("zmax").expect("set")[0].nodes.reverse();
+        assert!(message(&m).contains("face set 'zmax'"), "{}", message(&m));
+
+        let mut m = two_by_one();
+        m.coords[2][1] = f64::NAN;
+        assert!(message(&m).contains("non-finite"));
+    }
+
+    #[test]
+    fn inverted_and_degenerate_generated_elements_are_named() {
+        let mut m = two_by_one();
+        // Push a top corner of element 2 below its base: a folded corner.
+        let n = m.elements[1].nodes[6] as usize;
+        m.coords[n][2] = -0.5;
+        let msg = message(&m);
+        assert!(
+            msg.contains("element index 1") && msg.contains("element 2 is inverted"),
+            "{msg}"
+        );
+
+        let mut m = two_by_one();
+        m.face_sets.clear();
+        m.elements[0].nodes[7] = m.elements[0].nodes[6];
+        let msg = message(&m);
+        assert!(
+            msg.contains("element 1 is degenerate") && msg.contains("appears twice"),
+            "{msg}"
+        );
+    }
+}
