@@ -237,22 +237,18 @@ impl<'a> Reader<'a> {
                 other => self.skip_section(other)?,
             }
         }
-        let at = Location::file_line(self.cursor.file, self.cursor.line_no);
-        for (have, name) in [(self.version.is_some(), "MeshFormat"), (self.have_nodes, "Nodes")] {
-            if !have {
-                return Err(MeshError::Malformed {
-                    at,
-                    reason: format!("no ${name} section"),
-                });
-            }
+        let present = [
+            (self.version.is_some(), "MeshFormat"),
+            (self.have_nodes, "Nodes"),
+            (self.have_elements, "Elements"),
+        ];
+        match present.iter().find(|(have, _)| !have) {
+            Some((_, name)) => Err(MeshError::Malformed {
+                at: Location::file_line(self.cursor.file, self.cursor.line_no),
+                reason: format!("no ${name} section"),
+            }),
+            None => Ok(()),
         }
-        if !self.have_elements {
-            return Err(MeshError::Malformed {
-                at,
-                reason: "no $Elements section".into(),
-            });
-        }
-        Ok(())
     }
 
     fn skip_section(&mut self, section: &str) -> Result<(), MeshError> {
@@ -913,6 +909,11 @@ mod tests {
         let cut = &V41[..V41.find("3 2 5 1").expect("block")];
         let msg = error_of(cut, "cut.msh");
         assert_names(&msg, &["cut.msh:", "end of file inside section $Elements"]);
+        let no_elements = &V22[..V22.find("$Elements").expect("section")];
+        let msg = error_of(no_elements, "noel.msh");
+        assert_names(&msg, &["noel.msh:", "no $Elements section"]);
+        let msg = error_of("solid box\n", "notmsh.msh");
+        assert_names(&msg, &["notmsh.msh:1", "expected a section header"]);
     }
 
     #[test]
