@@ -16,7 +16,8 @@
 //!             | /           | /              4    (−1, −1, +1)
 //!             |/            |/               5    (+1, −1, +1)
 //!             0 ----------- 1  ---> ξ        6    (+1, +1, +1)
-//!            (η points from 0 to 3, into the page)   7    (−1, +1, +1)
+//!                                            7    (−1, +1, +1)
+//!   η points from 0 to 3 (into the page). x = Σ N_a x_a maps ξ, η, ζ to the element.
 //!
 //!   face  plane    nodes (right-hand normal points OUT of the element)
 //!    0    ζ = −1   0 3 2 1
@@ -617,7 +618,7 @@ mod tests {
     }
 
     #[test]
-    fn internal_force_of_rigid_motion_stress_free_and_of_uniform_stress_is_balanced() {
+    fn internal_force_of_a_uniform_stress_is_self_equilibrated() {
         let x = distorted();
         let g = Hex8Geometry::new(&x).expect("valid");
         let sig = Stress6(Vector6::new(1e6, -2e6, 3e5, 4e5, -1e5, 2e5));
