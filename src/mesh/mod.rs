@@ -4,9 +4,12 @@
 
 use std::collections::BTreeMap;
 
+pub mod error;
 pub mod generate;
 pub mod gmsh;
 pub mod validate;
+
+pub use error::{Location, MeshError};
 
 /// Element types the solver knows.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
