@@ -62,8 +62,8 @@ pub struct MeshSource {
     pub dam: Option<DamSpec>,
 }
 
-/// Structured box generator: blocks `layer_1..layer_k` from the bottom up (or one block `box`),
-/// node sets and face sets `xmin, xmax, ymin, ymax, zmin, zmax`.
+/// Structured box generator: blocks `layer_1..layer_k` from the bottom up, node sets and face
+/// sets `xmin, xmax, ymin, ymax, zmin, zmax`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct BoxSpec {
@@ -74,9 +74,20 @@ pub struct BoxSpec {
     pub size: [f64; 3],
     /// Divisions along x, y, z.
     pub divisions: [u32; 3],
-    /// Number of horizontal layers (blocks `layer_1` ... from the bottom); 0 or 1: one block `box`.
-    #[serde(default)]
+    /// Number of horizontal layers (blocks `layer_1` ... from the bottom); default 1.
+    #[serde(default = "one")]
     pub layers: u32,
+    /// Random node displacement as a fraction of the cell size (0 to 0.2), for distorted-mesh
+    /// (patch) tests; boundary faces stay plane.
+    #[serde(default)]
+    pub jitter: f64,
+    /// Seed of the jitter's pseudo-random sequence.
+    #[serde(default = "one_u64")]
+    pub seed: u64,
+}
+
+fn one_u64() -> u64 {
+    1
 }
 
 /// Dam-like mesh generator: blocks `layer_1..layer_k` from the bottom up; node and face sets

@@ -168,7 +168,10 @@ impl Scene {
 pub fn parse(text: &str, source: &str) -> Result<SceneFile, SceneError> {
     let de = serde_yaml::Deserializer::from_str(text);
     serde_path_to_error::deserialize(de).map_err(|e| {
-        let path = e.path().to_string();
+        let path = match e.path().to_string() {
+            p if p == "?" || p == "." => "(document)".to_string(),
+            p => p,
+        };
         SceneError::Parse {
             file: source.to_string(),
             path,
@@ -244,7 +247,7 @@ fn build_mesh(src: &MeshSource, base: &Path) -> Result<Mesh, String> {
     let mesh = match (&src.file, &src.box_, &src.dam) {
         (Some(p), None, None) => {
             let path: PathBuf = if p.is_absolute() { p.clone() } else { base.join(p) };
-            crate::mesh::gmsh::read(&path).map_err(|e| e.to_string())?
+            crate::mesh::gmsh::read_gmsh(&path).map_err(|e| e.to_string())?
         }
         (None, Some(b), None) => {
             let spec = generate::BoxSpec {
@@ -252,8 +255,8 @@ fn build_mesh(src: &MeshSource, base: &Path) -> Result<Mesh, String> {
                 size: b.size,
                 divisions: b.divisions.map(|d| d as usize),
                 layers: b.layers.max(1) as usize,
-                jitter: 0.0,
-                seed: 1,
+                jitter: b.jitter,
+                seed: b.seed,
             };
             generate::box_mesh(&spec).map_err(|e| e.to_string())?
         }
