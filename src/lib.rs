@@ -17,6 +17,8 @@
 pub mod conventions;
 pub mod element;
 pub mod error;
+#[cfg(feature = "native")]
+pub mod io;
 pub mod material;
 pub mod mesh;
 pub mod tensor;
