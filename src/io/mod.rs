@@ -46,7 +46,7 @@
 //!
 //! | name | center | ncomp | units | meaning |
 //! |---|---|---|---|---|
-//! | `displacement` | node | 3 | m | u = (u_x, u_y, u_z), total since the reference state of the stage that sets it |
+//! | `displacement` | node | 3 | m | nodal displacement u = (u_x, u_y, u_z), positive along the axes |
 //! | `reaction` | node | 3 | N | reaction forces at constrained DOFs (force exerted **on** the structure), 0 elsewhere |
 //! | `velocity`, `acceleration` | node | 3 | m/s, m/s² | dynamic stages |
 //! | `stress` | element | 6 | Pa | Cauchy stress at the element centre, Voigt `[xx, yy, zz, xy, yz, zx]`, **tension positive** |
