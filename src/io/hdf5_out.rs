@@ -260,12 +260,12 @@ impl ResultsFile {
         let n_ranks = out.comm.size() as u32;
         let root = out.file()?;
         let written = (|| -> hdf5::Result<()> {
-            write_attr_str(&root, "format", FORMAT_NAME)?;
-            write_attr(&root, "format_version", FORMAT_VERSION)?;
-            write_attr_str(&root, "units", "SI")?;
-            write_attr(&root, "n_ranks", n_ranks)?;
-            write_attr_str(&root, "scene", scene)?;
-            write_attr_str(&root, "cfrd_version", env!("CARGO_PKG_VERSION"))?;
+            write_attr_str(root, "format", FORMAT_NAME)?;
+            write_attr(root, "format_version", FORMAT_VERSION)?;
+            write_attr_str(root, "units", "SI")?;
+            write_attr(root, "n_ranks", n_ranks)?;
+            write_attr_str(root, "scene", scene)?;
+            write_attr_str(root, "cfrd_version", env!("CARGO_PKG_VERSION"))?;
             Ok(())
         })()
         .map_err(|e| IoError::hdf5("writing the root attributes", e));

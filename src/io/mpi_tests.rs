@@ -347,23 +347,22 @@ fn check_xdmf(r: &ResultsReader, xdmf: &Path, h5: &Path) {
     let text = std::fs::read_to_string(xdmf).expect("xdmf file");
     let elements = parse_for_tests(&text).unwrap_or_else(|e| panic!("{e}\n{text}"));
     let h5_name = h5.file_name().unwrap().to_string_lossy().into_owned();
-    let items: Vec<_> = elements.iter().filter(|e| e.0 == "DataItem").collect();
+    let items: Vec<_> = elements.iter().filter(|e| e.name == "DataItem").collect();
     assert_eq!(
         items.len(),
         2 * (2 + 3 + 3),
         "2 steps × (topology, geometry, 3 mesh + 3 step attributes)"
     );
-    for (_, attrs, body) in items {
-        let (file, dataset) = body.split_once(':').expect("file:dataset");
+    for item in items {
+        let (file, dataset) = item.text.split_once(':').expect("file:dataset");
         assert_eq!(file, h5_name);
-        let dims: Vec<usize> = attrs
-            .iter()
-            .find(|(k, _)| k == "Dimensions")
-            .map(|(_, v)| v.split(' ').map(|d| d.parse().unwrap()).collect())
+        let dims: Vec<usize> = item
+            .attr("Dimensions")
+            .map(|v| v.split(' ').map(|d| d.parse().unwrap()).collect())
             .unwrap();
         assert_eq!(r.shape(dataset).unwrap(), dims, "{dataset}");
     }
-    assert_eq!(elements.iter().filter(|e| e.0 == "Time").count(), 2);
+    assert_eq!(elements.iter().filter(|e| e.name == "Time").count(), 2);
 }
 
 /// Compares two files dataset by dataset (bitwise) and their attributes, except `n_ranks`.

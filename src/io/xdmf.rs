@@ -286,19 +286,38 @@ pub fn write(doc: &XdmfDocument, path: &Path) -> Result<(), IoError> {
     })
 }
 
-/// A minimal XML well-formedness check used by the tests: balanced, properly nested tags,
-/// quoted attribute values, and no stray `<`/`&`. Returns the `(element name, attributes, text)`
-/// of every element in document order.
+/// An element found by [`parse_for_tests`].
 #[cfg(test)]
-pub(crate) fn parse_for_tests(xml: &str) -> Result<Vec<(String, Vec<(String, String)>, String)>, String> {
-    let mut elements: Vec<(String, Vec<(String, String)>, String)> = Vec::new();
+#[derive(Debug, Clone)]
+pub(crate) struct XmlElement {
+    /// Tag name.
+    pub name: String,
+    /// Attributes in order.
+    pub attrs: Vec<(String, String)>,
+    /// Text content (trimmed, concatenated).
+    pub text: String,
+}
+
+#[cfg(test)]
+impl XmlElement {
+    /// Value of attribute `key`.
+    pub fn attr(&self, key: &str) -> Option<&str> {
+        self.attrs.iter().find(|(k, _)| k == key).map(|(_, v)| v.as_str())
+    }
+}
+
+/// A minimal XML well-formedness check used by the tests: balanced, properly nested tags,
+/// quoted attribute values, and no stray `<`/`>`. Returns every element in document order.
+#[cfg(test)]
+pub(crate) fn parse_for_tests(xml: &str) -> Result<Vec<XmlElement>, String> {
+    let mut elements: Vec<XmlElement> = Vec::new();
     let mut stack: Vec<(String, usize)> = Vec::new();
     let mut rest = xml;
     let mut roots = 0;
     while let Some(lt) = rest.find('<') {
         let text = &rest[..lt];
         if let Some(&(_, idx)) = stack.last() {
-            elements[idx].2.push_str(text.trim());
+            elements[idx].text.push_str(text.trim());
         } else if !text.trim().is_empty() {
             return Err(format!("text outside the root: {text:?}"));
         }
@@ -345,7 +364,11 @@ pub(crate) fn parse_for_tests(xml: &str) -> Result<Vec<(String, Vec<(String, Str
         if stack.is_empty() {
             roots += 1;
         }
-        elements.push((name.clone(), attrs, String::new()));
+        elements.push(XmlElement {
+            name: name.clone(),
+            attrs,
+            text: String::new(),
+        });
         if !self_closing {
             stack.push((name, elements.len() - 1));
         }
@@ -408,23 +431,21 @@ mod tests {
     fn temporal_collection_is_well_formed_and_typed() {
         let xml = render(&doc(2));
         let elements = parse_for_tests(&xml).unwrap_or_else(|e| panic!("{e}\n{xml}"));
-        let count = |n: &str| elements.iter().filter(|e| e.0 == n).count();
+        let count = |n: &str| elements.iter().filter(|e| e.name == n).count();
         assert_eq!(count("Xdmf"), 1);
         assert_eq!(count("Grid"), 3, "collection + 2 steps");
         assert_eq!(count("Time"), 2);
         assert_eq!(count("Topology"), 2);
-        let attr = |e: &(String, Vec<(String, String)>, String), k: &str| {
-            e.1.iter().find(|(key, _)| key == k).map(|(_, v)| v.clone())
-        };
+        let attr = |e: &XmlElement, k: &str| e.attr(k).map(str::to_string);
         let times: Vec<String> = elements
             .iter()
-            .filter(|e| e.0 == "Time")
+            .filter(|e| e.name == "Time")
             .filter_map(|e| attr(e, "Value"))
             .collect();
         assert_eq!(times, vec!["0.5", "1.0"]);
         let types: Vec<(String, String, String)> = elements
             .iter()
-            .filter(|e| e.0 == "Attribute")
+            .filter(|e| e.name == "Attribute")
             .take(5)
             .map(|e| {
                 (
@@ -444,20 +465,19 @@ mod tests {
         for (got, want) in types.iter().zip(expect) {
             assert_eq!((got.0.as_str(), got.1.as_str(), got.2.as_str()), want);
         }
-        let items: Vec<&(String, Vec<(String, String)>, String)> =
-            elements.iter().filter(|e| e.0 == "DataItem").collect();
+        let items: Vec<&XmlElement> = elements.iter().filter(|e| e.name == "DataItem").collect();
         assert!(
-            items.iter().all(|e| e.2.starts_with("dam &amp; co.h5:/")),
+            items.iter().all(|e| e.text.starts_with("dam &amp; co.h5:/")),
             "escaped file name"
         );
-        let topo = items.iter().find(|e| e.2.ends_with("/mesh/topology")).unwrap();
+        let topo = items.iter().find(|e| e.text.ends_with("/mesh/topology")).unwrap();
         assert_eq!(attr(topo, "Dimensions").unwrap(), "2 8");
         assert_eq!(attr(topo, "NumberType").unwrap(), "Int");
-        let stress = items.iter().find(|e| e.2.ends_with("000002/stress")).unwrap();
+        let stress = items.iter().find(|e| e.text.ends_with("000002/stress")).unwrap();
         assert_eq!(attr(stress, "Dimensions").unwrap(), "2 6");
         let disp = items
             .iter()
-            .find(|e| e.2.ends_with("000001/displacement"))
+            .find(|e| e.text.ends_with("000001/displacement"))
             .unwrap();
         assert_eq!(attr(disp, "Dimensions").unwrap(), "12 3");
     }
@@ -466,7 +486,7 @@ mod tests {
     fn mesh_only_document_is_a_single_uniform_grid() {
         let xml = render(&doc(0));
         let elements = parse_for_tests(&xml).unwrap();
-        assert_eq!(elements.iter().filter(|e| e.0 == "Grid").count(), 1);
+        assert_eq!(elements.iter().filter(|e| e.name == "Grid").count(), 1);
         assert!(!xml.contains("Temporal"));
         assert!(!xml.contains("<Time"));
     }
