@@ -64,6 +64,20 @@
 //! with row `8·e + q` for point `q` of element `e`; [`ResultsReader::read_owned`] gives each
 //! rank back the rows it owns under a possibly different rank count.
 //!
+//! # Use from the solver
+//!
+//! ```ignore
+//! let owned = OwnedMesh::from_mesh(&mesh, my_nodes, my_elements);    // METIS ownership
+//! let mut out = ResultsFile::create(&world, "out/results.h5", &scene.name)?;
+//! out.write_mesh(&owned)?;                                            // sets the node/element plans
+//! for step in output_steps {
+//!     out.begin_step(StepInfo { time, stage: stage.name.clone(), label })?;
+//!     out.write_node_field("displacement", "m", 3, &u_owned)?;        // 3 values per owned node
+//!     out.write_element_field("stress", "Pa", 6, &sig_centre_owned)?; // 6 values per owned element
+//! }
+//! out.close()?;                       // rename into place, rank 0 writes out/results.xdmf
+//! ```
+//!
 //! # Collective calls, locks and initialisation order
 //!
 //! * Every method of [`ResultsFile`] and [`ResultsReader`] (except `read_all` and the accessors)

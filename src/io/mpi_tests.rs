@@ -522,7 +522,11 @@ fn run_suite(world: &SimpleCommunicator, tag: &str) {
     check_temp_then_rename(world, &dir, &mesh);
     world.barrier();
     if rank == 0 {
-        std::fs::remove_dir_all(&dir).unwrap();
+        if std::env::var_os("CFRD_KEEP_TEST_FILES").is_some() {
+            println!("test files kept in {}", dir.display());
+        } else {
+            std::fs::remove_dir_all(&dir).unwrap();
+        }
     }
 }
 
