@@ -15,6 +15,7 @@ use mpi::traits::{Communicator, CommunicatorCollectives, Root};
 
 use super::hdf5_out::{OwnedMesh, ResultsFile, ResultsReader, StepInfo};
 use super::redistribute::Redistribution;
+use super::summary::{Phase, PhaseTimer, RunSummary};
 use super::xdmf::parse_for_tests;
 use super::IoError;
 
@@ -487,6 +488,34 @@ fn check_temp_then_rename(comm: &SimpleCommunicator, dir: &Path, mesh: &crate::m
     assert!(parse_for_tests(&xdmf).is_ok() && !xdmf.contains("Temporal"));
 }
 
+/// The collective parts of the run summary: per-rank peak memory and phase maxima.
+fn check_summary(comm: &SimpleCommunicator) {
+    let mut summary = RunSummary::new(comm, "box test");
+    summary.gather_peak_memory(comm);
+    assert_eq!(summary.ranks, comm.size() as u32);
+    assert_eq!(summary.peak_memory_bytes_per_rank.len(), comm.size() as usize);
+    assert!(
+        summary.peak_memory_bytes_per_rank.iter().all(|&b| b > 1 << 20),
+        "{summary:?}"
+    );
+    assert_eq!(
+        summary.peak_memory_bytes,
+        *summary.peak_memory_bytes_per_rank.iter().max().unwrap()
+    );
+    let mut timer = PhaseTimer::new();
+    timer.add(
+        Phase::Solve,
+        std::time::Duration::from_millis(10 * (comm.rank() as u64 + 1)),
+    );
+    timer.add(Phase::Read, std::time::Duration::from_millis(7));
+    let max = timer.seconds().max_over_ranks(comm);
+    assert!(
+        (max.solve - 0.010 * f64::from(comm.size())).abs() < 1e-12,
+        "{max:?}"
+    );
+    assert!((max.read - 0.007).abs() < 1e-12 && max.output == 0.0, "{max:?}");
+}
+
 /// Every check, on whatever communicator size: scattered ownership against a reference written
 /// by rank 0 alone with the whole mesh.
 fn run_suite(world: &SimpleCommunicator, tag: &str) {
@@ -512,6 +541,8 @@ fn run_suite(world: &SimpleCommunicator, tag: &str) {
     }
     world.barrier();
     check_case(world, &scattered_path, &mesh);
+    // Restart on a different rank count: the file written by one rank, read by all.
+    check_case(world, &reference_path, &mesh);
     let a = ResultsReader::open(world, &scattered_path).unwrap();
     let b = ResultsReader::open(&alone, &reference_path).unwrap();
     assert_same_file(&a, &b);
@@ -520,6 +551,7 @@ fn run_suite(world: &SimpleCommunicator, tag: &str) {
     drop((a, b));
     check_ownership_errors(world);
     check_temp_then_rename(world, &dir, &mesh);
+    check_summary(world);
     world.barrier();
     if rank == 0 {
         if std::env::var_os("CFRD_KEEP_TEST_FILES").is_some() {
