@@ -9,6 +9,13 @@
 //! | [`material`] | constitutive library: elastic, rockfill GP, interface laws, joints |
 //! | [`mesh`] | global mesh, Gmsh reader, validation, generators |
 //! | [`element`] | element kernels (hex8) |
+//! | [`scene`] | the YAML scene: schema, validation, physics terms |
+//! | [`solver`] | integration-point storage, element blocks, rank-local discretization, Newton |
+//! | `partition` (crate) | METIS partition, ownership, ghosts, partition files |
+//! | `linalg` | PETSc safe layer (feature `native`) |
+//! | `io` | parallel HDF5 results, XDMF, run summary (feature `native`) |
+//! | `parallel` | MPI start-up, abort-on-panic hook, collective decisions (feature `native`) |
+//! | `run` | the `cfrd run` pipeline (feature `native`) |
 //!
 //! The native parallel stack (MPI, PETSc, parallel HDF5, METIS) is behind the default
 //! `native` feature; the constitutive library, the mesh code and the element kernels build
@@ -17,6 +24,8 @@
 pub mod conventions;
 pub mod element;
 pub mod error;
+#[cfg(feature = "native")]
+pub mod io;
 #[cfg(feature = "native")]
 pub mod linalg;
 pub mod material;
