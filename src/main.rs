@@ -93,10 +93,7 @@ fn main() -> ExitCode {
                 petsc_options: petsc,
                 verbose: !quiet,
             };
-            let summary = cfrd::run::run(world, &opts)?;
-            if mpi::topology::Communicator::rank(world) == 0 && !quiet {
-                println!("{}", serde_json::to_string_pretty(&summary).expect("json"));
-            }
+            cfrd::run::run(world, &opts)?;
             Ok(())
         }),
     }

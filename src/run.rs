@@ -3,11 +3,13 @@
 //! Every input error is decided collectively ([`crate::parallel::any_error`]), so all ranks
 //! stop together with exit code 2 and rank 0 prints the message.
 
+use crate::io::hdf5_out::{strain_output_components, OwnedMesh, ResultsFile, StepInfo};
+use crate::io::summary::{Phase, PhaseTimer, RunSummary};
 use crate::linalg::petsc::Petsc;
 use crate::parallel::{any_error, broadcast_u32, EXIT_INPUT, EXIT_SOLVER};
 use crate::scene::Scene;
 use crate::solver::discretization::Discretization;
-use crate::solver::statics::{mesh_cells, SolveReport, StaticProblem};
+use crate::solver::statics::{mesh_cells, LocalResults, SolveReport, StaticProblem};
 use mpi::topology::{Communicator, SimpleCommunicator};
 use partition::{partition_elements, Partition, PartitionFile};
 use std::path::{Path, PathBuf};
@@ -72,8 +74,9 @@ pub fn partition_scene(world: &SimpleCommunicator, scene: &Scene) -> Result<Part
     Ok(Partition::new(&cells, n_nodes, nparts, part))
 }
 
-/// Runs a static analysis. Returns the run summary on success.
-pub fn run(world: &SimpleCommunicator, opts: &RunOptions) -> Result<serde_json::Value, RunFailure> {
+/// Runs a static analysis and writes `results.h5`, `results.xdmf` and `summary.json` into the
+/// output directory. Returns the run summary on success.
+pub fn run(world: &SimpleCommunicator, opts: &RunOptions) -> Result<RunSummary, RunFailure> {
     let rank = world.rank();
     let say = |s: &str| {
         if rank == 0 && opts.verbose {
@@ -81,24 +84,30 @@ pub fn run(world: &SimpleCommunicator, opts: &RunOptions) -> Result<serde_json::
         }
     };
     let t_all = Instant::now();
-    let t = Instant::now();
+    let mut timer = PhaseTimer::new();
+    timer.start(Phase::Read);
     let scene = load_scene(world, opts.scene.as_deref())?;
-    let t_read = t.elapsed().as_secs_f64();
     say(&format!(
-        "scene '{}': {} nodes, {} elements, {} ranks",
+        "scene '{}': {} nodes, {} elements, {} DOFs, {} ranks",
         scene.file.name,
         scene.mesh.num_nodes(),
         scene.mesh.elements.len(),
+        3 * scene.mesh.num_nodes(),
         world.size()
     ));
+    let out_dir = opts
+        .out_dir
+        .clone()
+        .unwrap_or_else(|| scene.file.output.dir.clone());
+    any_error(world, std::fs::create_dir_all(&out_dir))
+        .map_err(|m| input(format!("output directory {}: {m}", out_dir.display())))?;
 
-    let t = Instant::now();
+    timer.start(Phase::Partition);
     let partition = partition_scene(world, &scene)?;
     let cells = mesh_cells(&scene.mesh);
     let disc = Discretization::new(&cells, scene.mesh.num_nodes(), partition, rank as usize);
-    let t_partition = t.elapsed().as_secs_f64();
 
-    let t = Instant::now();
+    timer.start(Phase::Setup);
     let petsc = Petsc::initialize(world).map_err(|e| RunFailure {
         code: EXIT_SOLVER,
         message: e.to_string(),
@@ -109,7 +118,7 @@ pub fn run(world: &SimpleCommunicator, opts: &RunOptions) -> Result<serde_json::
     any_error(world, opt_result).map_err(|m| input(format!("PETSc options: {m}")))?;
     let setup = StaticProblem::new(&petsc, &scene, cells, disc);
     let mut problem = any_error(world, setup).map_err(|m| input(format!("setting up the solver: {m}")))?;
-    let t_setup = t.elapsed().as_secs_f64();
+    timer.stop();
 
     say("solving static equilibrium ...");
     let mut report = SolveReport::default();
@@ -118,30 +127,85 @@ pub fn run(world: &SimpleCommunicator, opts: &RunOptions) -> Result<serde_json::
         code: EXIT_SOLVER,
         message: m,
     })?;
+    timer.add(
+        Phase::Assembly,
+        std::time::Duration::from_secs_f64(report.assembly_seconds),
+    );
+    timer.add(
+        Phase::Solve,
+        std::time::Duration::from_secs_f64(report.solve_seconds),
+    );
     say(&format!(
-        "converged: {} Newton iterations, KSP iterations {:?}",
+        "converged: {} Newton iteration(s), KSP iterations {:?}",
         report.newton_iterations, report.ksp_iterations
     ));
+
+    timer.start(Phase::Output);
     let results = any_error(world, problem.results()).map_err(|m| RunFailure {
         code: EXIT_SOLVER,
         message: m,
     })?;
-    let _ = results;
+    let h5 = out_dir.join("results.h5");
+    let written = write_results(world, &scene, &results, &h5);
+    any_error(world, written).map_err(|m| RunFailure {
+        code: EXIT_SOLVER,
+        message: format!("writing results: {m}"),
+    })?;
+    timer.stop();
     drop(problem);
     drop(petsc);
-    Ok(serde_json::json!({
-        "scene": scene.file.name,
-        "ranks": world.size(),
-        "nodes": scene.mesh.num_nodes(),
-        "elements": scene.mesh.elements.len(),
-        "dofs": 3 * scene.mesh.num_nodes(),
-        "newton_iterations": report.newton_iterations,
-        "ksp_iterations": report.ksp_iterations,
-        "residuals": report.residuals,
-        "seconds": {
-            "read": t_read, "partition": t_partition, "setup": t_setup,
-            "assembly": report.assembly_seconds, "solve": report.solve_seconds,
-            "total": t_all.elapsed().as_secs_f64(),
-        },
-    }))
+
+    let mut summary = RunSummary::new(world, &scene.file.name);
+    summary.nodes = scene.mesh.num_nodes() as u64;
+    summary.elements = scene.mesh.elements.len() as u64;
+    summary.dofs = 3 * summary.nodes;
+    summary.phase_seconds = timer.seconds().max_over_ranks(world);
+    summary.total_seconds = crate::parallel::max_f64(world, t_all.elapsed().as_secs_f64());
+    summary.ksp_iterations = report.ksp_iterations.iter().map(|&k| k as u64).sum();
+    summary.newton_iterations = report.newton_iterations as u64;
+    summary.steps = 1;
+    summary.gather_peak_memory(world);
+    if rank == 0 {
+        summary
+            .write_json(&out_dir.join("summary.json"))
+            .map_err(|e| RunFailure {
+                code: EXIT_SOLVER,
+                message: e.to_string(),
+            })?;
+    }
+    say(&format!(
+        "results: {} (ParaView: {}), summary: {}",
+        h5.display(),
+        out_dir.join("results.xdmf").display(),
+        out_dir.join("summary.json").display()
+    ));
+    Ok(summary)
+}
+
+/// Writes mesh and fields of the converged state collectively (input order, any rank count).
+fn write_results(
+    world: &SimpleCommunicator,
+    scene: &Scene,
+    res: &LocalResults,
+    path: &Path,
+) -> Result<(), crate::io::IoError> {
+    let mut file = ResultsFile::create(world, path, &scene.file.name)?;
+    file.write_mesh(&OwnedMesh::from_mesh(
+        &scene.mesh,
+        res.nodes.clone(),
+        res.elements.clone(),
+    ))?;
+    file.begin_step(StepInfo {
+        time: 1.0,
+        stage: "static".into(),
+        label: "equilibrium".into(),
+    })?;
+    let flat3 = |v: &[[f64; 3]]| v.iter().flatten().copied().collect::<Vec<f64>>();
+    file.write_node_field("displacement", "m", 3, &flat3(&res.displacement))?;
+    file.write_node_field("reaction", "N", 3, &flat3(&res.reaction))?;
+    let stress: Vec<f64> = res.stress.iter().flat_map(|s| s.0.iter().copied()).collect();
+    file.write_element_field("stress", "Pa", 6, &stress)?;
+    let strain: Vec<f64> = res.strain.iter().flat_map(strain_output_components).collect();
+    file.write_element_field("strain", "-", 6, &strain)?;
+    file.close()
 }
