@@ -707,7 +707,7 @@ fn if6_open_shear_reclose_keeps_memory() {
     assert!(out.open && (out.opening - s.gap).abs() < 1e-15 && (out.normal - s.v_mat).abs() < 1e-15);
     // Shear while open: free, stresses zero, material frozen.
     let up = m
-        .update(&s, &Local3::new(3.0 * MM, -1.0 * MM, 0.0))
+        .update(&s, &Local3::new(3.0 * MM, -MM, 0.0))
         .expect("open shear");
     s = up.state;
     assert_eq!(GpInterface::traction(&s), Local3::zeros());
@@ -830,32 +830,53 @@ fn if7_hard_cases_zero_stress_tension_tiny_reversals_huge_increments() {
 
 #[test]
 fn if7_ten_thousand_cycles_without_nan() {
+    // 10 000 shear cycles (±0.5 mm, with an axial component) at σ_n ≈ 300 kPa. One update per
+    // step: δ_n is predicted from the last tangent so that σ_n returns to its target (an explicit
+    // drift-corrected CNL, cheaper than the Newton driver).
     let m = default_model();
-    let mut d = Driver::new(&m, 300.0 * KPA, 0.0);
+    let target = 300.0 * KPA;
+    let mut st = m.init_state(target).expect("init");
+    let mut k = m.update(&st, &Local3::zeros()).expect("tangent").tangent;
     let start = Instant::now();
+    let mut updates = 0_u64;
+    let mut substeps = 0_u64;
     let du = 0.5 * MM;
     for _ in 0..10_000 {
         for dx in [du, -du, -du, du] {
-            d.step(dx, 0.2 * dx).expect("cycle");
+            let (ds, da) = (dx, 0.2 * dx);
+            // ΔT_n = −(σ_target − σ_n) = K_ns·δs + K_na·δa + K_nn·δn.
+            let dt_n = -(target - st.stress[2]);
+            let dn = (dt_n - k[(2, 0)] * ds - k[(2, 1)] * da) / k[(2, 2)];
+            let up = m.update(&st, &Local3::new(ds, da, dn)).expect("cycle");
+            updates += 1;
+            substeps += up.substeps as u64;
+            k = up.tangent;
+            st = up.state;
+            assert!(st.stress.iter().all(|v| v.is_finite()) && !st.open);
         }
     }
     let secs = start.elapsed().as_secs_f64();
-    let st = &d.st;
     println!(
-        "10 000 CNL cycles: {} updates in {secs:.3} s = {:.0} updates/s; σn = {:.1} kPa, v = {:.3} mm, e = {:.4}",
-        d.updates,
-        d.updates as f64 / secs,
+        "10 000 cycles: {updates} updates ({substeps} substeps) in {secs:.3} s = {:.0} updates/s; \
+         σn = {:.1} kPa, v = {:.3} mm, e = {:.4}, W_p = {:.3e} Pa",
+        updates as f64 / secs,
         st.stress[2] / KPA,
         st.v_mat / MM,
-        st.void_ratio
+        st.void_ratio,
+        st.plastic_work
     );
-    let finite = st.stress.iter().chain(st.strain.iter()).all(|v| v.is_finite());
-    assert!(finite && st.void_ratio.is_finite() && st.plastic_work.is_finite());
-    println!(
-        "steps where σ_n(δ_n) jumped over the target at a reversal: {}",
-        d.unresolved
+    let finite = st
+        .stress
+        .iter()
+        .chain(st.strain.iter())
+        .chain(st.plastic_strain.iter())
+        .all(|v| v.is_finite());
+    assert!(finite && st.void_ratio.is_finite() && st.plastic_work.is_finite() && st.delta_e_c.is_finite());
+    assert!(
+        (st.stress[2] - target).abs() < 0.05 * target,
+        "σ_n kept near its target: {}",
+        st.stress[2]
     );
-    assert!((st.stress[2] - 300.0 * KPA).abs() < 1e-2 * 300.0 * KPA && !st.open);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -921,12 +942,11 @@ proptest! {
         let back: GpInterfaceState = serde_json::from_str(&json).expect("deserialize");
         // serde_json's default float parser may differ from the printed value by one ulp.
         prop_assert!(states_close(&back, &a.state, 4.0 * f64::EPSILON), "{:?} vs {:?}", back, a.state);
-        prop_assert_eq!(serde_json::to_string(&back).expect("json").len() > 0, true);
         prop_assert!(back.stress[2] >= 0.0);
     }
 
     #[test]
-    fn prop_invariance_under_rotation_of_shear_axes(path in path_strategy(), th in 0.0..6.2832_f64, sn in 50e3..600e3_f64) {
+    fn prop_invariance_under_rotation_of_shear_axes(path in path_strategy(), th in 0.0..std::f64::consts::TAU, sn in 50e3..600e3_f64) {
         let m = default_model();
         let (c, s) = (th.cos(), th.sin());
         let st = run_path(&m, sn, &path);
@@ -944,7 +964,7 @@ proptest! {
 
     #[test]
     fn prop_continuum_tangent_matches_finite_differences(
-        u0 in 0.5e-3..8e-3_f64, ratio in -0.5..0.5_f64, sn in 50e3..600e3_f64, dir in 0.0..6.2832_f64,
+        u0 in 0.5e-3..8e-3_f64, ratio in -0.5..0.5_f64, sn in 50e3..600e3_f64, dir in 0.0..std::f64::consts::TAU,
         basis in prop::sample::select(vec![StiffnessBasis::Displacement, StiffnessBasis::Strain])) {
         let m = model(basis);
         // A virgin state sheared along a direction, then a tiny loading increment along it
