@@ -390,15 +390,29 @@ fn report_shear_displacement_at_50_and_95_percent_of_peak() {
             let (u_p, t_p) = peak(&rec);
             let (a, b) = (u_at_fraction(&rec, 0.5), u_at_fraction(&rec, 0.95));
             u95.push(b);
+            // Table 3 hyperbolic fit of the same tests, closed form (H4): u at τ = τ_f/2.
+            let k_si = 600.0 * 9.81e3 * (sn / 101.3_f64).powf(0.85);
+            let tau_f = sn * KPA * 41.5_f64.to_radians().tan();
+            let u50_hyp = 0.5 * tau_f / (k_si * (1.0 - 0.9 * 0.5));
             println!(
-                "{basis:?} σn = {sn} kPa: τ_peak = {:.1} kPa at {:.1} mm; u50 = {:.2} mm; u95 = {:.2} mm; τ(5 mm) = {:.1} kPa",
+                "{basis:?} σn = {sn} kPa: τ_peak = {:.1} kPa at {:.1} mm; u50 = {:.2} mm (hyperbolic {:.2}); u95 = {:.2} mm; τ(5 mm) = {:.1} kPa",
                 t_p / KPA,
                 u_p / MM,
                 a / MM,
+                u50_hyp / MM,
                 b / MM,
                 tau_at(&rec, 5.0 * MM) / KPA
             );
             assert!(a < b && a > 0.0);
+            match basis {
+                StiffnessBasis::Displacement => {
+                    assert!(
+                        (a / u50_hyp - 1.0).abs() < 0.25,
+                        "displacement reading: u50 ≈ hyperbolic u50"
+                    )
+                }
+                StiffnessBasis::Strain => assert!(a < 0.2 * u50_hyp, "literal reading: ≥ 5× stiffer"),
+            }
         }
     }
     let secs = start.elapsed().as_secs_f64();
@@ -412,6 +426,24 @@ fn report_shear_displacement_at_50_and_95_percent_of_peak() {
             "displacement reading ≫ literal: {u95:?}"
         );
     }
+    // Cyclic timing: 200 cycles of ±2 mm at 200 kPa through the Newton driver.
+    let m = default_model();
+    let mut d = Driver::new(&m, 200.0 * KPA, 0.0);
+    let start = Instant::now();
+    for _ in 0..200 {
+        for dx in [
+            0.5, 0.5, 0.5, 0.5, -0.5, -0.5, -0.5, -0.5, -0.5, -0.5, -0.5, -0.5, 0.5, 0.5, 0.5, 0.5,
+        ] {
+            d.step(dx * MM, 0.0).expect("cyclic");
+        }
+    }
+    let secs = start.elapsed().as_secs_f64();
+    println!(
+        "cyclic CNL (±2 mm): {} updates in {secs:.3} s = {:.0} updates/s, v = {:.2} mm",
+        d.updates,
+        d.updates as f64 / secs,
+        d.st.v_mat / MM
+    );
 }
 
 // ---------------------------------------------------------------------------------------------
