@@ -211,3 +211,98 @@ pub fn integrate<M: SubstepModel>(
         substeps: accepted,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// dy/dε = −y (exact y = e^{−ε}); stops when y falls below `stop_below`.
+    struct Decay {
+        stop_below: f64,
+    }
+
+    impl SubstepModel for Decay {
+        type Point = f64;
+        type Branch = ();
+        type Rate = f64;
+        fn begin(&self, p: &f64, _d: &Vector3<f64>) -> Result<(f64, ()), MaterialError> {
+            Ok((*p, ()))
+        }
+        fn rate(&self, p: &f64, _br: (), d: &Vector3<f64>) -> Result<(f64, bool), MaterialError> {
+            Ok((-p * d[0], true))
+        }
+        fn advance(&self, p: &f64, r: &f64, w: f64) -> f64 {
+            p + w * r
+        }
+        fn average(&self, p: &f64, r1: &f64, r2: &f64) -> f64 {
+            p + 0.5 * (r1 + r2)
+        }
+        fn error(&self, p_new: &f64, r1: &f64, r2: &f64) -> f64 {
+            (r2 - r1).abs() / (2.0 * p_new.abs())
+        }
+        fn accept(&self, before: &f64, after: f64) -> Accepted<f64> {
+            if after < self.stop_below {
+                let fraction = (before - self.stop_below) / (before - after);
+                Accepted::Stop {
+                    point: self.stop_below,
+                    fraction,
+                }
+            } else {
+                Accepted::Continue(after)
+            }
+        }
+    }
+
+    #[test]
+    fn modified_euler_error_control_converges_with_stol() {
+        let total = Vector3::new(3.0, 0.0, 0.0);
+        let exact = (-3.0_f64).exp();
+        let mut last = (f64::INFINITY, 0);
+        for stol in [1e-3, 1e-4, 1e-5, 1e-6] {
+            let opt = SubstepOptions {
+                stol,
+                ..SubstepOptions::default()
+            };
+            let out = integrate(&Decay { stop_below: -1.0 }, &1.0, &total, &opt).expect("integrates");
+            let err = (out.point - exact).abs() / exact;
+            assert!(err < 50.0 * stol, "STOL {stol}: relative error {err}");
+            assert!(
+                err < last.0 && out.substeps > last.1,
+                "error falls, substeps grow"
+            );
+            assert_eq!(out.reached, 1.0);
+            last = (err, out.substeps);
+        }
+    }
+
+    #[test]
+    fn a_stop_reports_the_reached_fraction() {
+        let total = Vector3::new(3.0, 0.0, 0.0);
+        let opt = SubstepOptions {
+            stol: 1e-6,
+            ..SubstepOptions::default()
+        };
+        let out = integrate(&Decay { stop_below: 0.5 }, &1.0, &total, &opt).expect("integrates");
+        // y = 0.5 at ε = ln 2, i.e. at the fraction ln 2 / 3 of the increment.
+        assert!((out.reached - 2.0_f64.ln() / 3.0).abs() < 1e-3, "{}", out.reached);
+        assert_eq!(out.point, 0.5);
+        let zero = integrate(&Decay { stop_below: 0.5 }, &1.0, &Vector3::zeros(), &opt).expect("no-op");
+        assert_eq!((zero.point, zero.substeps, zero.reached), (1.0, 0, 1.0));
+    }
+
+    #[test]
+    fn too_many_attempts_is_an_error_not_a_panic() {
+        let opt = SubstepOptions {
+            stol: 1e-9,
+            dt_min: 1e-6,
+            max_substeps: 5,
+        };
+        let out = integrate(
+            &Decay { stop_below: -1.0 },
+            &1.0,
+            &Vector3::new(3.0, 0.0, 0.0),
+            &opt,
+        );
+        assert!(out.is_err());
+    }
+}
