@@ -789,6 +789,7 @@ fn if6_open_shear_reclose_keeps_memory() {
 #[test]
 fn if7_result_is_independent_of_stol() {
     let mut taus = Vec::new();
+    let mut reversed = Vec::new();
     for stol in [1e-3, 1e-4, 1e-5] {
         let mut p = GpInterfaceParams::default();
         p.integration.stol = stol;
@@ -798,8 +799,14 @@ fn if7_result_is_independent_of_stol() {
         let u = m
             .update(&st, &Local3::new(10.0 * MM, 2.0 * MM, 0.0))
             .expect("update");
+        // Then a big reversal step (reversal rule, cyclic branch, mapping ratio cap).
+        let r = m
+            .update(&u.state, &Local3::new(-6.0 * MM, 1.0 * MM, 0.1 * MM))
+            .expect("reversal");
         taus.push((u.state.stress, u.substeps));
+        reversed.push(r.state.stress);
     }
+    println!("STOL 1e-3/1e-4/1e-5 after the reversal: {reversed:?}");
     println!("STOL 1e-3/1e-4/1e-5: {taus:?}");
     let rel = |a: &[f64; 3], b: &[f64; 3]| {
         let d = ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt();
@@ -808,6 +815,14 @@ fn if7_result_is_independent_of_stol() {
     assert!(rel(&taus[0].0, &taus[2].0) < 1e-2, "STOL 1e-3 vs 1e-5");
     assert!(rel(&taus[1].0, &taus[2].0) < 1e-3, "STOL 1e-4 vs 1e-5");
     assert!(taus[2].1 > taus[0].1, "more substeps for a tighter STOL");
+    assert!(
+        rel(&reversed[0], &reversed[2]) < 1e-2,
+        "reversal: STOL 1e-3 vs 1e-5"
+    );
+    assert!(
+        rel(&reversed[1], &reversed[2]) < 1e-3,
+        "reversal: STOL 1e-4 vs 1e-5"
+    );
 }
 
 #[test]
