@@ -11,7 +11,7 @@ use super::interface_gp_substep::{Accepted, SubstepModel};
 use crate::error::MaterialError;
 use nalgebra::{Matrix3, Vector2, Vector3};
 
-/// Floor of the void ratio in the elastic factor (1+e)/e (caps it at 101) **[INF]**.
+/// Floor of the void ratio in the elastic factor (1+e)/e (caps it at 101) (spec tag INF).
 pub const VOID_RATIO_FLOOR: f64 = 0.01;
 /// Cap of √(ρ_max/ρ) (spec (I12): ρ ≥ 0.01·ρ_max).
 pub const MAPPING_RATIO_CAP: f64 = 10.0;
