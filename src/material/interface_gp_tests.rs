@@ -928,6 +928,49 @@ fn if7_ten_thousand_cycles_without_nan() {
     );
 }
 
+#[test]
+fn numerical_tangent_is_consistent_with_large_increments() {
+    for basis in [StiffnessBasis::Displacement, StiffnessBasis::Strain] {
+        let m = GpInterface::new(GpInterfaceParams {
+            stiffness_basis: basis,
+            tangent: TangentChoice::Numerical,
+            ..GpInterfaceParams::default()
+        })
+        .expect("valid");
+        let mut st = m.init_state(200.0 * KPA).expect("init");
+        for _ in 0..10 {
+            st = m
+                .update(&st, &Local3::new(0.3 * MM, 0.1 * MM, 0.0))
+                .expect("pre")
+                .state;
+        }
+        // Large increments: further loading, and a reversal with an axial component.
+        for inc in [
+            Local3::new(2.0 * MM, 0.5 * MM, 0.02 * MM),
+            Local3::new(-1.5 * MM, 0.8 * MM, -0.01 * MM),
+        ] {
+            let up = m.update(&st, &inc).expect("base");
+            assert_eq!(up.kind, TangentKind::Consistent);
+            let h = 1e-6 * inc.norm();
+            let mut fd = Tangent3::zeros();
+            for j in 0..3 {
+                let (mut dp, mut dm) = (inc, inc);
+                dp[j] += h;
+                dm[j] -= h;
+                let tp = GpInterface::traction(&m.update(&st, &dp).expect("+").state);
+                let tm = GpInterface::traction(&m.update(&st, &dm).expect("-").state);
+                fd.set_column(j, &((tp - tm) / (2.0 * h)));
+            }
+            let err = (fd - up.tangent).norm() / up.tangent.norm();
+            // The continuum tangent of the same update, for comparison.
+            let cont = model(basis).update(&st, &inc).expect("continuum").tangent;
+            let err_c = (fd - cont).norm() / cont.norm();
+            println!("{basis:?} increment {inc:?}: numerical tangent error {err:.2e}, continuum {err_c:.2e}");
+            assert!(err < 1e-3, "consistent tangent vs central FD: {err}");
+        }
+    }
+}
+
 // ---------------------------------------------------------------------------------------------
 // Property tests
 
