@@ -31,7 +31,13 @@
 //! * **G2.4 (σ_c,max)**: tracked only (updated every accepted substep); it does not enter H.
 //!   Consequently normal reloading below the previous maximum is plastic again (IF-1).
 //! * **G2.5**: image point for both shear directions, η̄ in d_f, current η in d_g.
-//! * **G2.6**: dΔe_c = χ⟨dW_p⟩/(a + bW_p)², positive sign (I21).
+//! * **G2.6**: dΔe_c = χ⟨dW_p⟩/(a + bW_p)², positive sign (I21); χ = c on cyclic branches
+//!   (ρ < ρ_max), W_p the total cumulative positive plastic work.
+//! * **G2.7**: e0 = 0.25 by default (key `e0`).
+//! * **G2.8**: opening when σ_n ≤ σ_open (default 0) with the crossing interpolated inside the
+//!   substep; while open s = 0 and the material is frozen (e, W_p, Δe_c, η_max, σ_c,max);
+//!   shear jumps while open are free (they count in the output slip, not in the material);
+//!   re-closure when the gap is consumed, at σ_n = σ_min, τ = 0, r_A = 0 (spec §2.12).
 //!
 //! # G2.3: which reading of eqs. (4)/(5a) fits the seed's other fits
 //! Seed Table 2 gives D_s0, D_n0 and H0 "in kPa", and eq. (2) defines the interface strain as
