@@ -96,8 +96,11 @@
 //! same factor softens the normal response 10×. IF-1 (σ_n 10 → 400 → 100 → 800 kPa at τ = 0)
 //! closes the 0.1 m layer by 26 mm at 400 kPa and 34 mm at 800 kPa (e < 0; the elastic factor is
 //! then bounded by [`super::interface_gp_functions::VOID_RATIO_FLOOR`]), against 6.0 and 7.7 mm
-//! in the literal reading; unloading 100 kPa → 0 needs ≈ 60 mm of opening. Activate the interface
-//! at its real initial normal stress (§2.11) and check normal displacements in dam runs.
+//! in the literal reading; from σ_n = 100 kPa the interface opens only after ≈ 190 mm of normal
+//! separation (8.8 mm literally), because e and hence the elastic factor change with it. No
+//! reading of the shared H gives both the Table 3/4 shear level and a stiff virgin normal
+//! response. Activate the interface at its real initial normal stress (§2.11), check normal
+//! displacements in dam runs, and compare with `strain` where the normal response matters.
 //!
 //! # Other numerical choices
 //! * §8.6 item 4: H + nᵀD^e n_g is floored at 0.05·max(nᵀD^e n_g, 0.01·min(D_s, D_n)) in the rate

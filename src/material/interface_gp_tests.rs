@@ -281,6 +281,18 @@ fn if1_normal_compression_unloading_reloading() {
         d.normal_to(800.0 * KPA, 120).expect("reload");
         assert!(d.st.plastic_strain[2] > ep400[2]);
         assert!(d.st.sigma_c_max >= 800.0 * KPA * (1.0 - 1e-9));
+        // Opening from 100 kPa (measured: ≈ 190 mm under `displacement`, 8.8 mm literally).
+        let fresh = m.init_state(100.0 * KPA).expect("init");
+        let opens = |mm: f64| {
+            m.update(&fresh, &Local3::new(0.0, 0.0, mm * MM))
+                .expect("open")
+                .state
+                .open
+        };
+        match basis {
+            StiffnessBasis::Strain => assert!(opens(10.0) && !opens(8.0)),
+            StiffnessBasis::Displacement => assert!(opens(200.0) && !opens(150.0)),
+        }
         println!(
             "IF-1 {basis:?}: v(50 kPa) = {:.3} mm, v(400) = {:.3} mm, v(back at 100) = {:.3} mm, v(800) = {:.3} mm, e = {:.4}",
             v50 / MM,
