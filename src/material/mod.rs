@@ -16,6 +16,8 @@ use serde::{de::DeserializeOwned, Serialize};
 pub mod elastic;
 pub mod gp_integrator;
 pub mod interface_gp;
+pub mod interface_gp_functions;
+pub mod interface_gp_substep;
 pub mod interface_hyperbolic;
 pub mod interface_mc;
 pub mod joint;
