@@ -1,0 +1,80 @@
+//! Helpers for integration tests that run the `cfrd` binary, alone or under `mpirun`.
+#![allow(dead_code)]
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output, Stdio};
+
+/// Path of the built `cfrd` binary.
+pub fn cfrd_bin() -> PathBuf {
+    PathBuf::from(env!("CARGO_BIN_EXE_cfrd"))
+}
+
+/// Environment for mpirun as root, oversubscribed, unbound (stack.md §8), without the
+/// variables of an MPI singleton parent (they make a child mpirun fail).
+fn mpi_command(np: usize) -> Command {
+    let mut cmd = Command::new("mpirun");
+    for (k, _) in std::env::vars() {
+        if k.starts_with("OMPI_") || k.starts_with("PMIX_") {
+            cmd.env_remove(k);
+        }
+    }
+    cmd.args(["-n", &np.to_string(), "--oversubscribe", "--bind-to", "none", "--timeout", "300"])
+        .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
+        .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
+        .env("OMPI_MCA_btl_vader_single_copy_mechanism", "none")
+        .stdin(Stdio::null());
+    cmd
+}
+
+/// Runs `cfrd ARGS` under `mpirun -n np` in `dir`.
+pub fn cfrd_mpi(np: usize, dir: &Path, args: &[&str]) -> Output {
+    let mut cmd = mpi_command(np);
+    cmd.arg(cfrd_bin()).args(args).current_dir(dir);
+    cmd.output().expect("mpirun starts")
+}
+
+/// Runs `cfrd ARGS` as a plain process (an MPI singleton) in `dir`.
+pub fn cfrd(dir: &Path, args: &[&str]) -> Output {
+    Command::new(cfrd_bin()).args(args).current_dir(dir).stdin(Stdio::null()).output().expect("cfrd starts")
+}
+
+/// stdout + stderr as text.
+pub fn text(o: &Output) -> String {
+    format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr))
+}
+
+/// A fresh temporary directory.
+pub fn tempdir() -> tempfile::TempDir {
+    tempfile::tempdir().expect("tempdir")
+}
+
+/// Reads a whole f64 dataset of a results file (serial HDF5, no MPI needed).
+pub fn read_f64(path: &Path, dataset: &str) -> Vec<f64> {
+    let f = hdf5::File::open(path).expect("open results");
+    f.dataset(dataset).expect("dataset").read_raw::<f64>().expect("read")
+}
+
+/// Reads a whole i64 dataset of a results file.
+pub fn read_i64(path: &Path, dataset: &str) -> Vec<i64> {
+    let f = hdf5::File::open(path).expect("open results");
+    f.dataset(dataset).expect("dataset").read_raw::<i64>().expect("read")
+}
+
+/// Names of all datasets under a group, sorted, with their shapes.
+pub fn layout(path: &Path) -> Vec<(String, Vec<usize>)> {
+    let f = hdf5::File::open(path).expect("open results");
+    let mut out = Vec::new();
+    fn walk(g: &hdf5::Group, prefix: &str, out: &mut Vec<(String, Vec<usize>)>) {
+        for name in g.member_names().expect("members") {
+            let path = format!("{prefix}/{name}");
+            if let Ok(ds) = g.dataset(&name) {
+                out.push((path, ds.shape()));
+            } else if let Ok(sub) = g.group(&name) {
+                walk(&sub, &path, out);
+            }
+        }
+    }
+    walk(&f, "", &mut out);
+    out.sort();
+    out
+}
