@@ -251,8 +251,16 @@ pub trait GpModelFunctions<const N: usize, const K: usize> {
         branch: Branch,
     ) -> Result<Branch, MaterialError>;
 
+    /// Norm of a stress-like vector used by the error measure. The default is the Euclidean
+    /// norm of the components; a Voigt model should use the tensor norm √(σ:σ) so that the
+    /// substep sequence does not depend on the orientation of the axes.
+    fn stress_norm(&self, sigma: &SVector<f64, N>) -> f64 {
+        sigma.norm()
+    }
+
     /// Scales of the error norm: the stress scale added to 2‖σ̃‖ (spec §8.2 `pscale`: p_a for
-    /// the rockfill, σ_min for the interface) and one scale per internal variable.
+    /// the rockfill, σ_min for the interface) and one scale per internal variable
+    /// (`f64::INFINITY` leaves a variable out of the error measure).
     fn error_scales(&self) -> (f64, SVector<f64, K>);
 }
 
@@ -486,7 +494,7 @@ where
             let (ds2, dk2) = stage(model, &predicted, branch, &de)?;
             new_sigma = trial.sigma + (ds1 + ds2) * 0.5;
             new_kappa = trial.kappa + (dk1 + dk2) * 0.5;
-            let mut err = (ds2 - ds1).norm() / (2.0 * new_sigma.norm() + sig_scale);
+            let mut err = model.stress_norm(&(ds2 - ds1)) / (2.0 * model.stress_norm(&new_sigma) + sig_scale);
             for j in 0..K {
                 let e = (dk2[j] - dk1[j]).abs() / (2.0 * new_kappa[j].abs() + kappa_scale[j]);
                 err = err.max(e);
