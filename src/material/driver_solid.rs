@@ -283,7 +283,10 @@ impl<'a, M: SolidModel> MaterialPointDriver<'a, M> {
         let sig = M::stress(&self.state).0;
         let p = -(sig[0] + sig[1] + sig[2]) / 3.0;
         let s = [sig[0] + p, sig[1] + p, sig[2] + p];
-        let j2 = 0.5 * (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]) + sig[3] * sig[3] + sig[4] * sig[4] + sig[5] * sig[5];
+        let j2 = 0.5 * (s[0] * s[0] + s[1] * s[1] + s[2] * s[2])
+            + sig[3] * sig[3]
+            + sig[4] * sig[4]
+            + sig[5] * sig[5];
         let e = &self.strain;
         DriverRow {
             step,
@@ -353,7 +356,13 @@ pub fn triaxial_stress_step(sigma3: f64, q: f64) -> StepControl {
 /// Drained cyclic triaxial at σ3 (Pa): q goes from `q_min` to `q_max` and back, `cycles`
 /// times, in `steps_per_half` stress-controlled steps per half cycle. The path starts at
 /// q = q_min (the driver must already be there).
-pub fn cyclic_triaxial(sigma3: f64, q_min: f64, q_max: f64, cycles: usize, steps_per_half: usize) -> Vec<StepControl> {
+pub fn cyclic_triaxial(
+    sigma3: f64,
+    q_min: f64,
+    q_max: f64,
+    cycles: usize,
+    steps_per_half: usize,
+) -> Vec<StepControl> {
     let mut out = Vec::with_capacity(2 * cycles * steps_per_half);
     for _ in 0..cycles {
         for k in 1..=steps_per_half {
@@ -381,7 +390,126 @@ pub fn constant_eta(eta: f64, p_from: f64, p_to: f64, steps: usize) -> Vec<StepC
         .map(|k| {
             let p = p_from + (p_to - p_from) * k as f64 / steps as f64;
             let q = eta * p;
-            StepControl::stress([-(p - q / 3.0), -(p - q / 3.0), -(p + 2.0 * q / 3.0), 0.0, 0.0, 0.0])
+            StepControl::stress([
+                -(p - q / 3.0),
+                -(p - q / 3.0),
+                -(p + 2.0 * q / 3.0),
+                0.0,
+                0.0,
+                0.0,
+            ])
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::material::elastic::{ElasticParams, LinearElastic};
+    use crate::material::rockfill_gp::{RockfillGp, RockfillGpParams};
+    use crate::material::SolidUpdate;
+
+    /// Linear elastic model that refuses increments larger than `limit` (to exercise halving).
+    struct Picky {
+        inner: LinearElastic,
+        limit: f64,
+    }
+
+    impl SolidModel for Picky {
+        type State = <LinearElastic as SolidModel>::State;
+        fn symmetric_tangent(&self) -> bool {
+            true
+        }
+        fn init_state(&self, sigma0: &Stress6) -> Result<Self::State, MaterialError> {
+            self.inner.init_state(sigma0)
+        }
+        fn update(
+            &self,
+            prev: &Self::State,
+            d_eps: &Strain6,
+        ) -> Result<SolidUpdate<Self::State>, MaterialError> {
+            if d_eps.0.amax() > self.limit {
+                return Err(MaterialError::new("increment too large"));
+            }
+            self.inner.update(prev, d_eps)
+        }
+        fn stress(state: &Self::State) -> Stress6 {
+            state.stress
+        }
+    }
+
+    fn elastic() -> LinearElastic {
+        LinearElastic::new(&ElasticParams {
+            young: 100e6,
+            poisson: 0.25,
+            density: 2000.0,
+        })
+    }
+
+    #[test]
+    fn uniaxial_stress_recovers_young_and_poisson() {
+        let m = elastic();
+        let mut d = MaterialPointDriver::new(&m, &Stress6::default()).expect("zero stress");
+        let step = StepControl([
+            Control::Stress(0.0),
+            Control::Stress(0.0),
+            Control::Strain(-1e-3),
+            Control::Stress(0.0),
+            Control::Stress(0.0),
+            Control::Stress(0.0),
+        ]);
+        let r = *d.step(&step).expect("step");
+        assert!((r.stress[2] / r.strain[2] - 100e6).abs() < 1e-6 * 100e6);
+        assert!((-r.strain[0] / r.strain[2] - 0.25).abs() < 1e-10);
+        assert!(r.stress[0].abs() < 1e-8 * 1e5 && r.stress[1].abs() < 1e-3);
+        // Invariants of the row: p = σ_a/3, q = |σ_a|, ε_v = −tr ε, ε_q of the strain.
+        assert!((r.p - 1e5 / 3.0).abs() < 1e-6 && (r.q - 1e5).abs() < 1e-6);
+        assert!((r.eps_v - 1e-3 * (1.0 - 2.0 * 0.25)).abs() < 1e-12);
+        assert!((r.eps_q - 2.0 / 3.0 * 1e-3 * 1.25).abs() < 1e-12);
+        assert_eq!(d.rows().len(), 2);
+        assert_eq!(d.rows()[1].step, 1);
+    }
+
+    #[test]
+    fn failing_updates_are_halved_until_they_pass() {
+        let m = Picky {
+            inner: elastic(),
+            limit: 1.1e-4,
+        };
+        let mut d = MaterialPointDriver::new(&m, &Stress6::default()).expect("init");
+        d.run(&oedometer(1e-3, 1)).expect("halving to 1/16 of the step");
+        assert!((d.last().strain[2] + 1e-3).abs() < 1e-15);
+        assert_eq!(d.rows().len(), 2, "one row per user step");
+        let strict = Picky {
+            inner: elastic(),
+            limit: 1e-9,
+        };
+        let mut d = MaterialPointDriver::new(&strict, &Stress6::default())
+            .expect("init")
+            .with_options(DriverOptions {
+                max_halvings: 3,
+                ..DriverOptions::default()
+            });
+        let err = d.run(&oedometer(1e-3, 1)).unwrap_err();
+        assert!(err.reason.contains("halvings"), "{}", err.reason);
+    }
+
+    #[test]
+    fn path_helpers_produce_the_stated_paths() {
+        let m = RockfillGp::new(RockfillGpParams::default()).expect("seed");
+        let mut d = MaterialPointDriver::new(&m, &Stress6::isotropic(-200e3))
+            .expect("p0 = 200 kPa")
+            .with_elastic_tangent(|s| m.elastic_tangent(s));
+        d.run(&constant_eta(0.8, 200e3, 400e3, 10)).expect("constant η");
+        assert!((d.last().q / d.last().p - 0.8).abs() < 1e-7);
+        assert!((d.last().p - 400e3).abs() < 1e-2);
+        let cyc = cyclic_triaxial(400e3, 0.0, 100e3, 3, 5);
+        assert_eq!(cyc.len(), 30);
+        d.run(&triaxial_compression(400e3, 0.01, 20)).expect("triaxial");
+        let r = d.last();
+        assert!((r.stress[0] + 400e3).abs() < 1e-8 * 1e6 && (r.stress[1] + 400e3).abs() < 1e-2);
+        assert!(r.stress[3].abs() < 1e-2 && r.stress[4].abs() < 1e-2 && r.stress[5].abs() < 1e-2);
+        assert!(d.substeps() >= 30);
+        assert!(d.tangent().is_some());
+    }
 }

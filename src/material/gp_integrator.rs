@@ -343,7 +343,7 @@ pub const H_ELASTIC: f64 = 1.0e30;
 /// a = nᵀ·De·n_g;  d = max(H + a, 0.05·|a|)
 /// ```
 pub fn guarded_denominator<const N: usize>(dd_e: &SMatrix<f64, N, N>, data: &PlasticData<N>) -> Option<f64> {
-    if !(data.h < H_ELASTIC) {
+    if data.h.is_nan() || data.h >= H_ELASTIC {
         return None;
     }
     let a = data.n.dot(&(dd_e * data.n_g));
@@ -520,8 +520,16 @@ where
                 // Branch change inside the substep: retry up to the estimated change point
                 // (linear interpolation of the indicator), without touching dt_err.
                 rejected += 1;
-                let alpha = if (c0 - c1).abs() > 0.0 { c0 / (c0 - c1) } else { 0.5 };
-                let alpha = if alpha.is_finite() { alpha.clamp(0.0, 0.9) } else { 0.5 };
+                let alpha = if (c0 - c1).abs() > 0.0 {
+                    c0 / (c0 - c1)
+                } else {
+                    0.5
+                };
+                let alpha = if alpha.is_finite() {
+                    alpha.clamp(0.0, 0.9)
+                } else {
+                    0.5
+                };
                 dt_limit = Some(alpha * dt);
                 continue;
             }
@@ -533,14 +541,20 @@ where
         for j in 0..K {
             err = err.max((dk2[j] - dk1[j]).abs() / (2.0 * new_kappa[j].abs() + kappa_scale[j]));
         }
-        let r = if err.is_finite() { err.max(opts.eps) } else { f64::INFINITY };
+        let r = if err.is_finite() {
+            err.max(opts.eps)
+        } else {
+            f64::INFINITY
+        };
         let q_raw = 0.9 * (opts.stol / r).sqrt();
         if r <= opts.stol {
             trial.sigma = new_sigma;
             trial.kappa = new_kappa;
             let recorded = model.after_accept(&mut trial, branch)?;
             if !(trial.sigma.iter().all(|x| x.is_finite()) && trial.kappa.iter().all(|x| x.is_finite())) {
-                return Err(MaterialError::new("GP substepping: non-finite state after an accepted substep"));
+                return Err(MaterialError::new(
+                    "GP substepping: non-finite state after an accepted substep",
+                ));
             }
             point = trial;
             branch_out = recorded;
@@ -549,7 +563,11 @@ where
             t += dt;
             // A substep shortened by a branch change or by the end of the step does not
             // throttle the error-controlled size; otherwise dT ← min(q, 1.1)·dT (spec §8.2).
-            dt_err = if dt < dt_err { dt_err.min(q_raw * dt) } else { q_raw.min(1.1) * dt };
+            dt_err = if dt < dt_err {
+                dt_err.min(q_raw * dt)
+            } else {
+                q_raw.min(1.1) * dt
+            };
             dt_err = dt_err.max(opts.dt_min);
             dt_limit = None;
         } else {
@@ -598,7 +616,11 @@ mod tests {
             branch: Branch,
             _d: &Vector1<f64>,
         ) -> Result<PlasticData<1>, MaterialError> {
-            let h = if branch == Branch::Loading { self.h } else { f64::INFINITY };
+            let h = if branch == Branch::Loading {
+                self.h
+            } else {
+                f64::INFINITY
+            };
             Ok(PlasticData {
                 n: Vector1::new(1.0),
                 n_g: Vector1::new(1.0),
@@ -625,15 +647,27 @@ mod tests {
             kappa: Vector1::new(0.0),
             memory: 0_u32,
         };
-        let res = integrate(&toy, &start, &Vector1::new(0.01), Branch::Elastic, &SubstepOptions::default())
-            .expect("integrates");
+        let res = integrate(
+            &toy,
+            &start,
+            &Vector1::new(0.01),
+            Branch::Elastic,
+            &SubstepOptions::default(),
+        )
+        .expect("integrates");
         assert!((res.point.sigma[0] - 0.2).abs() < 1e-14, "{}", res.point.sigma[0]);
         assert!((res.point.kappa[0] - 0.008).abs() < 1e-15);
         assert!((res.tangent[(0, 0)] - 20.0).abs() < 1e-12);
         assert_eq!(res.kind, TangentKind::Continuum);
         assert_eq!(res.point.memory, res.substeps);
-        let back = integrate(&toy, &res.point, &Vector1::new(-0.01), Branch::Loading, &SubstepOptions::default())
-            .expect("unloads");
+        let back = integrate(
+            &toy,
+            &res.point,
+            &Vector1::new(-0.01),
+            Branch::Loading,
+            &SubstepOptions::default(),
+        )
+        .expect("unloads");
         assert!((back.point.sigma[0] - (0.2 - 1.0)).abs() < 1e-13);
         assert_eq!(back.kind, TangentKind::Elastic);
         assert_eq!(back.last_branch, Branch::Unloading);
@@ -651,7 +685,10 @@ mod tests {
         let (d, kind) = elastoplastic_matrix(&dd_e, &data);
         assert_eq!(kind, TangentKind::Continuum);
         assert!((d[(0, 0)] - (100.0 - 100.0 * 100.0 / 5.0)).abs() < 1e-9);
-        let elastic = PlasticData { h: f64::INFINITY, ..data };
+        let elastic = PlasticData {
+            h: f64::INFINITY,
+            ..data
+        };
         assert_eq!(elastoplastic_matrix(&dd_e, &elastic).1, TangentKind::Elastic);
     }
 
@@ -662,7 +699,10 @@ mod tests {
         assert_eq!(o.dt_min, 1e-6);
         assert!(o.validate("").is_ok());
         let bad = SubstepOptions { stol: 0.0, ..o };
-        assert_eq!(bad.validate("integration.").unwrap_err().field, "integration.stol");
+        assert_eq!(
+            bad.validate("integration.").unwrap_err().field,
+            "integration.stol"
+        );
         assert!(serde_json::from_str::<SubstepOptions>(r#"{"stl": 1e-5}"#).is_err());
     }
 }

@@ -303,7 +303,7 @@ pub fn invariants_compression_positive(sigma: &Vector6) -> InvariantsCompression
 
 /// sin 3θ of a deviator (stress-like Voigt) with J2 given; 0 when J2 vanishes.
 fn lode_function(dev: &Vector6, j2: f64) -> f64 {
-    if !(j2 > 0.0) {
+    if j2.is_nan() || j2 <= 0.0 {
         return 0.0;
     }
     let m = Matrix3::new(
@@ -454,7 +454,8 @@ impl RockfillGp {
                 -0.5 * d_eps[4],
                 -0.5 * d_eps[5],
             );
-            let j2 = 0.5 * (e[0] * e[0] + e[1] * e[1] + e[2] * e[2]) + e[3] * e[3] + e[4] * e[4] + e[5] * e[5];
+            let j2 =
+                0.5 * (e[0] * e[0] + e[1] * e[1] + e[2] * e[2]) + e[3] * e[3] + e[4] * e[4] + e[5] * e[5];
             let q_d = (3.0 * j2).sqrt();
             if q_d > 1.0e-10 * d_eps.norm() && q_d > 0.0 {
                 (q_gradient(&e, q_d), lode_function(&e, j2), inv.q)
@@ -578,7 +579,7 @@ impl RockfillGp {
     /// Returns true when the cut-off reset the stress.
     fn apply_stress_limits(&self, sigma: &mut Vector6) -> bool {
         let inv = invariants_compression_positive(sigma);
-        if !(inv.p >= self.p_cutoff) {
+        if inv.p.is_nan() || inv.p < self.p_cutoff {
             *sigma = Vector6::new(-self.pmin, -self.pmin, -self.pmin, 0.0, 0.0, 0.0);
             return true;
         }
@@ -587,14 +588,7 @@ impl RockfillGp {
         if inv.q > eta_cap * inv.p {
             let scale = eta_cap * inv.p / inv.q;
             let s = inv.dev * scale;
-            *sigma = -Vector6::new(
-                s[0] + inv.p,
-                s[1] + inv.p,
-                s[2] + inv.p,
-                s[3],
-                s[4],
-                s[5],
-            );
+            *sigma = -Vector6::new(s[0] + inv.p, s[1] + inv.p, s[2] + inv.p, s[3], s[4], s[5]);
         }
         false
     }
@@ -608,7 +602,12 @@ impl GpModelFunctions<6, NK> for RockfillGp {
     }
 
     /// Directions (R5)–(R7) and moduli (R8)/(R14), returned tension positive (n = −n_c).
-    fn plastic_data(&self, point: &Point, branch: Branch, d_eps: &Vector6) -> Result<PlasticData<6>, MaterialError> {
+    fn plastic_data(
+        &self,
+        point: &Point,
+        branch: Branch,
+        d_eps: &Vector6,
+    ) -> Result<PlasticData<6>, MaterialError> {
         let loc = self.local(&point.sigma, d_eps);
         let p = &self.params;
         let mv = m_v();
@@ -619,12 +618,19 @@ impl GpModelFunctions<6, NK> for RockfillGp {
         let ng = (1.0 + d_g * d_g).sqrt();
         let (n_gv, n_gs) = (d_g / ng, 1.0 / ng);
         let (n_g_c, h) = match branch {
-            Branch::Loading => (mv * n_gv + loc.m_s * n_gs, self.h_loading(&loc, &point.kappa, &point.memory)),
+            Branch::Loading => (
+                mv * n_gv + loc.m_s * n_gs,
+                self.h_loading(&loc, &point.kappa, &point.memory),
+            ),
             Branch::Unloading => (
                 mv * (-n_gv.abs()) + loc.m_s * n_gs,
                 self.h_unloading(&loc, &point.kappa, &point.memory),
             ),
-            Branch::Elastic => return Err(MaterialError::new("rockfill GP: plastic data of the elastic branch")),
+            Branch::Elastic => {
+                return Err(MaterialError::new(
+                    "rockfill GP: plastic data of the elastic branch",
+                ))
+            }
         };
         if !h.is_nan() && n_c.iter().chain(n_g_c.iter()).all(|x| x.is_finite()) {
             Ok(PlasticData {
@@ -643,9 +649,16 @@ impl GpModelFunctions<6, NK> for RockfillGp {
     /// (R15) indicator nᵀdσe/(|n||dσe|) with tensor norms (|n| of the strain-like n with
     /// tensorial shear, √(σ:σ) for dσe), so that the branch decisions and the flip estimates
     /// do not depend on the orientation of the axes.
-    fn loading_indicator(&self, point: &Point, d_eps: &Vector6, d_sig_e: &Vector6) -> Result<f64, MaterialError> {
+    fn loading_indicator(
+        &self,
+        point: &Point,
+        d_eps: &Vector6,
+        d_sig_e: &Vector6,
+    ) -> Result<f64, MaterialError> {
         let n = self.plastic_data(point, Branch::Loading, d_eps)?.n;
-        let n_norm = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2] + 0.5 * (n[3] * n[3] + n[4] * n[4] + n[5] * n[5])).sqrt();
+        let n_norm =
+            (n[0] * n[0] + n[1] * n[1] + n[2] * n[2] + 0.5 * (n[3] * n[3] + n[4] * n[4] + n[5] * n[5]))
+                .sqrt();
         let den = n_norm * self.stress_norm(d_sig_e);
         Ok(if den > 0.0 && den.is_finite() {
             (n.dot(d_sig_e) / den).clamp(-1.0, 1.0)
@@ -750,7 +763,11 @@ impl SolidModel for RockfillGp {
         })
     }
 
-    fn update(&self, prev: &RockfillGpState, d_eps: &Strain6) -> Result<SolidUpdate<RockfillGpState>, MaterialError> {
+    fn update(
+        &self,
+        prev: &RockfillGpState,
+        d_eps: &Strain6,
+    ) -> Result<SolidUpdate<RockfillGpState>, MaterialError> {
         let start = self.to_point(prev);
         let res = integrate(self, &start, &d_eps.0, prev.branch, &self.params.integration)?;
         let state = if res.substeps == 0 {
@@ -820,7 +837,8 @@ mod tests {
     fn triaxial(model: &RockfillGp, p0: f64, sigma3: f64, steps: usize, extension: bool) -> Triaxial {
         let mut d = MaterialPointDriver::new(model, &Stress6::isotropic(-p0)).expect("init");
         if sigma3 > p0 {
-            d.run(&isotropic_compression(p0, sigma3, 100)).expect("consolidation");
+            d.run(&isotropic_compression(p0, sigma3, 100))
+                .expect("consolidation");
         }
         let start = *d.last();
         let path = if extension {
@@ -863,7 +881,10 @@ mod tests {
     #[test]
     fn default_is_seed_table1_and_serde_rejects_unknown_keys() {
         let p = RockfillGpParams::default();
-        assert_eq!((p.g0, p.k0, p.h0, p.hu0, p.rd, p.gamma_dm, p.gamma_u), (1475.0, 1567.0, 570.0, 1500.0, 120.0, 65.0, 7.5));
+        assert_eq!(
+            (p.g0, p.k0, p.h0, p.hu0, p.rd, p.gamma_dm, p.gamma_u),
+            (1475.0, 1567.0, 570.0, 1500.0, 120.0, 65.0, 7.5)
+        );
         assert_eq!((p.pa, p.pmin, p.density), (101_300.0, 5065.0, 2150.0));
         assert!(p.validate().is_ok());
         let json = r#"{"G0":1475,"K0":1567,"ms":0.43,"mv":0.43,"Mg":1.75,"Mf":0.9,"alpha_f":0.21,
@@ -871,10 +892,18 @@ mod tests {
             "gammaDM":65,"gammaU":7.5}"#;
         let parsed: RockfillGpParams = serde_json::from_str(json).expect("17 keys suffice");
         assert_eq!(parsed, p);
-        let with_options = json.replace("7.5}", r#"7.5, "lode": "off", "xi_rule": "flow_component", "integration": {"stol": 1e-5}}"#);
+        let with_options = json.replace(
+            "7.5}",
+            r#"7.5, "lode": "off", "xi_rule": "flow_component", "integration": {"stol": 1e-5}}"#,
+        );
         let parsed: RockfillGpParams = serde_json::from_str(&with_options).expect("options");
-        assert_eq!((parsed.lode, parsed.xi_rule, parsed.integration.stol), (Lode::Off, XiRule::FlowComponent, 1e-5));
-        assert!(serde_json::from_str::<RockfillGpParams>(&json.replace("7.5}", r#"7.5, "G00": 1}"#)).is_err());
+        assert_eq!(
+            (parsed.lode, parsed.xi_rule, parsed.integration.stol),
+            (Lode::Off, XiRule::FlowComponent, 1e-5)
+        );
+        assert!(
+            serde_json::from_str::<RockfillGpParams>(&json.replace("7.5}", r#"7.5, "G00": 1}"#)).is_err()
+        );
         let schema = serde_json::to_string(&schemars::schema_for!(RockfillGpParams)).expect("schema");
         assert!(schema.contains("gammaDM") && schema.contains("pz1990"));
     }
@@ -891,7 +920,11 @@ mod tests {
         assert_eq!(bad(|p| p.gamma_dm = f64::NAN), "gammaDM");
         assert_eq!(bad(|p| p.p_cutoff = 2.0 * p.pmin), "p_cutoff");
         assert_eq!(bad(|p| p.integration.stol = 2.0), "integration.stol");
-        assert!(RockfillGp::new(RockfillGpParams { pa: 0.0, ..Default::default() }).is_err());
+        assert!(RockfillGp::new(RockfillGpParams {
+            pa: 0.0,
+            ..Default::default()
+        })
+        .is_err());
     }
 
     #[test]
@@ -934,25 +967,40 @@ mod tests {
         let ev_2000 = d.last().eps_v;
         // Spec: plastic volumetric strain ≈ 0.4–0.6 % from 100 to 2000 kPa.
         assert!((0.004..=0.006).contains(&evp_2000), "ε_v^p = {evp_2000}");
-        assert_eq!(d.state().xi, 0.0, "no deviatoric plastic strain in isotropic compression (R11)");
+        assert_eq!(
+            d.state().xi,
+            0.0,
+            "no deviatoric plastic strain in isotropic compression (R11)"
+        );
         assert!(d.last().q < 1e-6, "stays isotropic");
         // Unloading from η = 0 is elastic: ε_v^p frozen, Δε_v = ∫dp/K(p).
-        d.run(&isotropic_compression(2000e3, 300e3, 170)).expect("unloading");
+        d.run(&isotropic_compression(2000e3, 300e3, 170))
+            .expect("unloading");
         assert_eq!(d.state().eps_p_vol, evp_2000);
         let (k0, pa, mv) = (1567.0_f64, 101.3e3_f64, 0.43_f64);
         let integral = |p: f64| pa.powf(mv) / (k0 * pa) * p.powf(1.0 - mv) / (1.0 - mv);
         let elastic = integral(2000e3) - integral(300e3);
-        assert!(rel(ev_2000 - d.last().eps_v, elastic) < 1e-4, "{} vs {elastic}", ev_2000 - d.last().eps_v);
+        assert!(
+            rel(ev_2000 - d.last().eps_v, elastic) < 1e-4,
+            "{} vs {elastic}",
+            ev_2000 - d.last().eps_v
+        );
         // Reloading is elastic (H_DM ≫ 1) up to close to 2000 kPa ...
-        d.run(&isotropic_compression(300e3, 1900e3, 160)).expect("reloading");
+        d.run(&isotropic_compression(300e3, 1900e3, 160))
+            .expect("reloading");
         assert!(d.state().eps_p_vol - evp_2000 < 1e-3 * evp_2000);
-        d.run(&isotropic_compression(1900e3, 3000e3, 110)).expect("reloading beyond");
+        d.run(&isotropic_compression(1900e3, 3000e3, 110))
+            .expect("reloading beyond");
         // ... then rejoins the virgin curve: compare with a monotonic run to 3000 kPa.
         let mut v = MaterialPointDriver::new(&m, &Stress6::isotropic(-100e3)).expect("p0 = 100 kPa");
-        v.run(&isotropic_compression(100e3, 3000e3, 290)).expect("virgin to 3000");
+        v.run(&isotropic_compression(100e3, 3000e3, 290))
+            .expect("virgin to 3000");
         let virgin_increment = v.state().eps_p_vol - evp_2000;
         let reload_increment = d.state().eps_p_vol - evp_2000;
-        assert!(rel(reload_increment, virgin_increment) < 0.05, "{reload_increment} vs {virgin_increment}");
+        assert!(
+            rel(reload_increment, virgin_increment) < 0.05,
+            "{reload_increment} vs {virgin_increment}"
+        );
         assert!(rel(d.last().eps_v, v.last().eps_v) < 0.01);
     }
 
@@ -972,11 +1020,31 @@ mod tests {
             let tx = triaxial(&m, s3, s3, 1500, false);
             // q_peak ±2 %, η_peak ±0.02, strains at peak ±10 %, volumetric strains ±0.1 % abs.
             assert!(rel(tx.q_peak, q_peak) < 0.02, "σ3 {s3}: q_peak {}", tx.q_peak);
-            assert!((tx.eta_peak - eta_peak).abs() < 0.02, "σ3 {s3}: η_peak {}", tx.eta_peak);
-            assert!(rel(tx.ea_peak, ea_peak) < 0.10, "σ3 {s3}: ε_a,peak {}", tx.ea_peak);
-            assert!((tx.ev_max - ev_max).abs() < 1e-3, "σ3 {s3}: ε_v,max {}", tx.ev_max);
-            assert!(rel(tx.ea_at_ev_max, ea_ev) < 0.10, "σ3 {s3}: ε_a at ε_v,max {}", tx.ea_at_ev_max);
-            assert!((tx.ev_end - ev_end).abs() < 1e-3, "σ3 {s3}: ε_v(15 %) {}", tx.ev_end);
+            assert!(
+                (tx.eta_peak - eta_peak).abs() < 0.02,
+                "σ3 {s3}: η_peak {}",
+                tx.eta_peak
+            );
+            assert!(
+                rel(tx.ea_peak, ea_peak) < 0.10,
+                "σ3 {s3}: ε_a,peak {}",
+                tx.ea_peak
+            );
+            assert!(
+                (tx.ev_max - ev_max).abs() < 1e-3,
+                "σ3 {s3}: ε_v,max {}",
+                tx.ev_max
+            );
+            assert!(
+                rel(tx.ea_at_ev_max, ea_ev) < 0.10,
+                "σ3 {s3}: ε_a at ε_v,max {}",
+                tx.ea_at_ev_max
+            );
+            assert!(
+                (tx.ev_end - ev_end).abs() < 1e-3,
+                "σ3 {s3}: ε_v(15 %) {}",
+                tx.ev_end
+            );
             // Dilatancy changes sign at η = M_g (d_g = 0) on the loading branch.
             for &(eta0, eta1, devp) in &tx.dilatancy {
                 if eta0 < 1.74 && eta1 < 1.74 && devp != 0.0 {
@@ -1006,8 +1074,15 @@ mod tests {
         for (s3, q_ref) in [(300e3, 2120e3), (1000e3, 5930e3), (2000e3, 11170e3)] {
             let direct = triaxial(&m, s3, s3, 750, false);
             let consolidated = triaxial(&m, 100e3, s3, 750, false);
-            assert!(rel(consolidated.q_peak, q_ref) < 0.10, "σ3 {s3}: {}", consolidated.q_peak);
-            assert!(consolidated.q_peak > direct.q_peak, "consolidation densifies (H_den)");
+            assert!(
+                rel(consolidated.q_peak, q_ref) < 0.10,
+                "σ3 {s3}: {}",
+                consolidated.q_peak
+            );
+            assert!(
+                consolidated.q_peak > direct.q_peak,
+                "consolidation densifies (H_den)"
+            );
             assert!(consolidated.ev_max < direct.ev_max);
         }
     }
@@ -1112,7 +1187,12 @@ mod tests {
             assert!(devp > 0.0, "no dilation below M_g");
             // Plastic strain-increment ratio dε_q^p/dε_v^p = 1/d_g (R5), to 10⁻³: inside a step
             // the integrated stress leaves η = 0.5 slightly (only the end point is prescribed).
-            assert!(rel(deqp / devp, 1.0 / d_g) < 1e-3, "{} vs {}", deqp / devp, 1.0 / d_g);
+            assert!(
+                rel(deqp / devp, 1.0 / d_g) < 1e-3,
+                "{} vs {}",
+                deqp / devp,
+                1.0 / d_g
+            );
             // Total ratio: plastic part plus the (smaller) elastic part.
             let (dev, deq) = (r.eps_v - r0.eps_v, r.eps_q - r0.eps_q);
             assert!(dev > 0.0 && deq > 0.0);
@@ -1129,7 +1209,10 @@ mod tests {
         }
         let last = etas[etas.len() - 1];
         assert!(last < 1.75 && last > 0.3, "K0 ratio η = {last}");
-        assert!((etas[etas.len() - 1] - etas[etas.len() - 20]).abs() < 0.02, "η settles: {etas:?}");
+        assert!(
+            (etas[etas.len() - 1] - etas[etas.len() - 20]).abs() < 0.02,
+            "η settles: {etas:?}"
+        );
     }
 
     /// RF-5: Lode switch (pz1990). Drained triaxial extension at constant lateral stress
@@ -1147,7 +1230,10 @@ mod tests {
         let comp = triaxial(&m, 1000e3, 1000e3, 750, false);
         let ext = triaxial(&m, 1000e3, 1000e3, 750, true);
         let ratio = ext.eta_peak / comp.eta_peak;
-        assert!((0.85..=0.91).contains(&ratio), "extension/compression peak ratio {ratio}");
+        assert!(
+            (0.85..=0.91).contains(&ratio),
+            "extension/compression peak ratio {ratio}"
+        );
         // Dilatancy sign change at η = 0.75·1.75 = 1.3125 in extension.
         let mg_e = 0.75 * 1.75;
         let mut saw_dilation = false;
@@ -1164,7 +1250,10 @@ mod tests {
         let off = model_with(|p| p.lode = Lode::Off);
         let ext_off = triaxial(&off, 1000e3, 1000e3, 750, true);
         let lode_effect = ext.eta_peak / ext_off.eta_peak;
-        assert!((lode_effect - 0.75).abs() < 0.02, "pz1990/off extension peak ratio {lode_effect}");
+        assert!(
+            (lode_effect - 0.75).abs() < 0.02,
+            "pz1990/off extension peak ratio {lode_effect}"
+        );
         // With lode = off the dilatancy changes sign at M_g = 1.75 in extension too.
         for &(eta0, eta1, devp) in &ext_off.dilatancy {
             if eta0 < 1.74 && eta1 < 1.74 && devp != 0.0 {
@@ -1172,13 +1261,18 @@ mod tests {
             }
         }
         let comp_off = triaxial(&off, 1000e3, 1000e3, 750, false);
-        assert!(rel(comp_off.q_peak, comp.q_peak) < 1e-9, "lode irrelevant in compression");
+        assert!(
+            rel(comp_off.q_peak, comp.q_peak) < 1e-9,
+            "lode irrelevant in compression"
+        );
     }
 
     /// A fixed strain-controlled path from p0 = 1000 kPa in `5·split` updates: four of
     /// Δε = (0.3, 0.3, −1, 0.1, 0, 0)·2.5·10⁻², then one back.
     fn strain_path(model: &RockfillGp, split: usize) -> (RockfillGpState, u64) {
-        let mut s = model.init_state(&Stress6::isotropic(-1000e3)).expect("p0 = 1000 kPa");
+        let mut s = model
+            .init_state(&Stress6::isotropic(-1000e3))
+            .expect("p0 = 1000 kPa");
         let mut substeps = 0;
         let step = Vector6::new(0.3, 0.3, -1.0, 0.1, 0.0, 0.0) * 2.5e-2 / split as f64;
         for k in 0..5 * split {
@@ -1219,7 +1313,10 @@ mod tests {
             assert!((1.8..=4.0).contains(&r), "substep ratio {r} ({counts:?})");
         }
         let last = counts[3] / counts[2];
-        assert!((2.5..=4.0).contains(&last), "asymptotic ratio {last}, √10 expected");
+        assert!(
+            (2.5..=4.0).contains(&last),
+            "asymptotic ratio {last}, √10 expected"
+        );
     }
 
     #[test]
@@ -1228,7 +1325,14 @@ mod tests {
         // Crest point: p0 = 3 kPa (below p_min = 5.065 kPa), η = 1.
         let p0 = 3e3;
         let mut s = m
-            .init_state(&Stress6(Vector6::new(-(p0 - 1e3), -(p0 - 1e3), -(p0 + 2e3), 0.0, 0.0, 0.0)))
+            .init_state(&Stress6(Vector6::new(
+                -(p0 - 1e3),
+                -(p0 - 1e3),
+                -(p0 + 2e3),
+                0.0,
+                0.0,
+                0.0,
+            )))
             .expect("init at p0 = 3 kPa");
         for k in 0..200 {
             let sign = if k % 40 < 20 { 1.0 } else { -1.0 };
@@ -1246,13 +1350,20 @@ mod tests {
     fn hard_case_tensile_strain_increment_cuts_off() {
         let m = seed_model();
         let s = m.init_state(&Stress6::isotropic(-50e3)).expect("p0 = 50 kPa");
-        let up = m.update(&s, &Strain6(Vector6::new(1e-3, 1e-3, 1e-3, 0.0, 0.0, 0.0))).expect("tension");
+        let up = m
+            .update(&s, &Strain6(Vector6::new(1e-3, 1e-3, 1e-3, 0.0, 0.0, 0.0)))
+            .expect("tension");
         assert!(up.state.cut);
         assert_eq!(up.state.stress, Stress6::isotropic(-m.params.pmin));
         assert_eq!(up.kind, crate::material::TangentKind::Elastic);
         assert!(up.tangent.0.iter().all(|x| x.is_finite()));
         // The next, compressive, update starts from p_min and clears the flag.
-        let back = m.update(&up.state, &Strain6(Vector6::new(-1e-4, -1e-4, -1e-4, 0.0, 0.0, 0.0))).expect("recompression");
+        let back = m
+            .update(
+                &up.state,
+                &Strain6(Vector6::new(-1e-4, -1e-4, -1e-4, 0.0, 0.0, 0.0)),
+            )
+            .expect("recompression");
         assert!(!back.state.cut);
         assert!(invariants_compression_positive(&back.state.stress.0).p > m.params.pmin);
     }
@@ -1355,7 +1466,9 @@ mod tests {
     fn loaded_state(m: &RockfillGp, eta: f64) -> RockfillGpState {
         let mut d = MaterialPointDriver::new(m, &Stress6::isotropic(-1000e3)).expect("p0 = 1000 kPa");
         let q_end = eta * 1000e3 / (1.0 - eta / 3.0);
-        let path: Vec<StepControl> = (1..=20).map(|k| triaxial_stress_step(1000e3, q_end * k as f64 / 20.0)).collect();
+        let path: Vec<StepControl> = (1..=20)
+            .map(|k| triaxial_stress_step(1000e3, q_end * k as f64 / 20.0))
+            .collect();
         d.run(&path).expect("loading");
         d.state().clone()
     }
