@@ -472,6 +472,17 @@ impl RockfillGp {
         }
     }
 
+    /// Loading direction n (compression positive), spec (R6):
+    ///
+    /// ```text
+    /// d_f = (1 + α_f)(M_f − η);  n = (d_f·m_v + m_s)/√(1 + d_f²)
+    /// ```
+    fn loading_direction(&self, loc: &Local) -> Vector6 {
+        let d_f = (1.0 + self.params.alpha_f) * (loc.mf - loc.eta);
+        let nf = (1.0 + d_f * d_f).sqrt();
+        m_v() * (d_f / nf) + loc.m_s * (1.0 / nf)
+    }
+
     /// η_f = (1 + 1/α_f)·M_f (spec (R9)).
     fn eta_f(&self, mf: f64) -> f64 {
         (1.0 + 1.0 / self.params.alpha_f) * mf
@@ -611,9 +622,7 @@ impl GpModelFunctions<6, NK> for RockfillGp {
         let loc = self.local(&point.sigma, d_eps);
         let p = &self.params;
         let mv = m_v();
-        let d_f = (1.0 + p.alpha_f) * (loc.mf - loc.eta);
-        let nf = (1.0 + d_f * d_f).sqrt();
-        let n_c = mv * (d_f / nf) + loc.m_s * (1.0 / nf);
+        let n_c = self.loading_direction(&loc);
         let d_g = (1.0 + p.alpha_g) * (loc.mg - loc.eta);
         let ng = (1.0 + d_g * d_g).sqrt();
         let (n_gv, n_gs) = (d_g / ng, 1.0 / ng);
@@ -655,7 +664,8 @@ impl GpModelFunctions<6, NK> for RockfillGp {
         d_eps: &Vector6,
         d_sig_e: &Vector6,
     ) -> Result<f64, MaterialError> {
-        let n = self.plastic_data(point, Branch::Loading, d_eps)?.n;
+        // n in the tension-positive convention of the integrator: n = −n_c.
+        let n = -self.loading_direction(&self.local(&point.sigma, d_eps));
         let n_norm =
             (n[0] * n[0] + n[1] * n[1] + n[2] * n[2] + 0.5 * (n[3] * n[3] + n[4] * n[4] + n[5] * n[5]))
                 .sqrt();
