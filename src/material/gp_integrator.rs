@@ -705,4 +705,104 @@ mod tests {
         );
         assert!(serde_json::from_str::<SubstepOptions>(r#"{"stl": 1e-5}"#).is_err());
     }
+
+    /// A 3-component model (the interface dimension): D^e = E·I, n = n_g = σ/|σ| (radial),
+    /// H = h·(1 + |σ|) (nonlinear hardening), elastic unloading. Checks the generic N, the
+    /// error control against a fine reference, and the NMAX failure.
+    struct Radial3 {
+        e: f64,
+        h: f64,
+    }
+
+    impl GpModelFunctions<3, 1> for Radial3 {
+        type Memory = ();
+        fn elastic_matrix(&self, _p: &GpPoint<3, 1, ()>) -> nalgebra::Matrix3<f64> {
+            nalgebra::Matrix3::identity() * self.e
+        }
+        fn plastic_data(
+            &self,
+            p: &GpPoint<3, 1, ()>,
+            branch: Branch,
+            d: &nalgebra::Vector3<f64>,
+        ) -> Result<PlasticData<3>, MaterialError> {
+            let norm = p.sigma.norm();
+            let dir = if norm > 0.0 { p.sigma / norm } else { d.normalize() };
+            let h = if branch == Branch::Loading {
+                self.h * (1.0 + norm)
+            } else {
+                f64::INFINITY
+            };
+            Ok(PlasticData { n: dir, n_g: dir, h })
+        }
+        fn kappa_increment(&self, _p: &GpPoint<3, 1, ()>, s: &StageIncrement<'_, 3>) -> Vector1<f64> {
+            Vector1::new(s.d_lambda.abs())
+        }
+        fn after_accept(&self, _p: &mut GpPoint<3, 1, ()>, b: Branch) -> Result<Branch, MaterialError> {
+            Ok(b)
+        }
+        fn error_scales(&self) -> (f64, Vector1<f64>) {
+            (1.0e-3, Vector1::new(1.0e-3))
+        }
+    }
+
+    #[test]
+    fn generic_dimension_three_converges_and_fails_cleanly() {
+        let m = Radial3 { e: 100.0, h: 10.0 };
+        let start = GpPoint {
+            sigma: nalgebra::Vector3::new(0.1, 0.0, 0.0),
+            kappa: Vector1::new(0.0),
+            memory: (),
+        };
+        let d_eps = nalgebra::Vector3::new(0.02, 0.01, 0.0);
+        let fine = SubstepOptions {
+            stol: 1e-9,
+            nmax: 1_000_000,
+            ..SubstepOptions::default()
+        };
+        let reference = integrate(&m, &start, &d_eps, Branch::Elastic, &fine).expect("fine");
+        let coarse =
+            integrate(&m, &start, &d_eps, Branch::Elastic, &SubstepOptions::default()).expect("default");
+        let err = (coarse.point.sigma - reference.point.sigma).norm() / reference.point.sigma.norm();
+        assert!(err < 2e-4, "relative error {err}");
+        assert!(reference.substeps > coarse.substeps && coarse.substeps > 1);
+        assert_eq!(coarse.kind, TangentKind::Continuum);
+        let starved = SubstepOptions {
+            nmax: 2,
+            ..SubstepOptions::default()
+        };
+        let e = integrate(&m, &start, &d_eps, Branch::Elastic, &starved).unwrap_err();
+        assert!(e.reason.contains("NMAX"), "{}", e.reason);
+        let nan = integrate(
+            &m,
+            &start,
+            &nalgebra::Vector3::new(f64::NAN, 0.0, 0.0),
+            Branch::Elastic,
+            &fine,
+        );
+        assert!(nan.is_err());
+    }
+
+    /// A reversal inside the step: loading then unloading along the same axis in one step is
+    /// impossible (the increment is straight), but a radial model started at σ = −0.05 e1 with
+    /// Δε = +0.1 e1 passes through σ = 0, where n turns over: the substep containing the
+    /// change is rejected and retried up to the estimated change point.
+    #[test]
+    fn branch_change_inside_a_step_is_located() {
+        let m = Radial3 { e: 100.0, h: 10.0 };
+        let start = GpPoint {
+            sigma: nalgebra::Vector3::new(-0.05, 0.0, 0.0),
+            kappa: Vector1::new(0.0),
+            memory: (),
+        };
+        let d_eps = nalgebra::Vector3::new(0.1, 0.0, 0.0);
+        let res =
+            integrate(&m, &start, &d_eps, Branch::Loading, &SubstepOptions::default()).expect("integrates");
+        assert!(res.rejected >= 1, "the flip was detected");
+        assert_eq!(res.last_branch, Branch::Loading);
+        // Elastic unloading to σ = 0 takes 0.0005 of strain; the rest is plastic loading with
+        // dσ/dε = E·H/(E+H) and H = h(1+σ): σ stays well below the elastic value E·Δε.
+        let s = res.point.sigma[0];
+        assert!(s > 0.0 && s < 100.0 * 0.0995 * 0.5, "σ = {s}");
+        assert!(res.point.sigma[1].abs() < 1e-12);
+    }
 }
