@@ -25,6 +25,7 @@
 //! for row in driver.rows() { println!("{} {} {}", row.eps_q, row.q, row.eps_v); }
 //! ```
 
+use super::rockfill_gp::{deviatoric_invariant, invariants_compression_positive};
 use super::SolidModel;
 use crate::error::MaterialError;
 use crate::tensor::{Strain6, Stress6, Tangent6, Vector6};
@@ -281,21 +282,16 @@ impl<'a, M: SolidModel> MaterialPointDriver<'a, M> {
 
     fn row(&self, step: usize) -> DriverRow {
         let sig = M::stress(&self.state).0;
-        let p = -(sig[0] + sig[1] + sig[2]) / 3.0;
-        let s = [sig[0] + p, sig[1] + p, sig[2] + p];
-        let j2 = 0.5 * (s[0] * s[0] + s[1] * s[1] + s[2] * s[2])
-            + sig[3] * sig[3]
-            + sig[4] * sig[4]
-            + sig[5] * sig[5];
+        let inv = invariants_compression_positive(&sig);
         let e = &self.strain;
         DriverRow {
             step,
             strain: std::array::from_fn(|i| e[i]),
             stress: std::array::from_fn(|i| sig[i]),
-            p,
-            q: (3.0 * j2).sqrt(),
+            p: inv.p,
+            q: inv.q,
             eps_v: -(e[0] + e[1] + e[2]),
-            eps_q: super::rockfill_gp::deviatoric_invariant(e),
+            eps_q: deviatoric_invariant(e),
         }
     }
 }

@@ -151,7 +151,8 @@ pub struct RockfillGpParams {
     #[serde(default)]
     pub lode: Lode,
     /// Whether H_den also multiplies H_U (spec (R14), gap G1.2). Default true.
-    #[serde(default = "default_true")]
+    /// The spec's §7 spelling `hden_on_HU` is accepted as an alias.
+    #[serde(default = "default_true", alias = "hden_on_HU")]
     pub hden_on_hu: bool,
     /// Use H_DM only while H_v + H_s > 0 (spec (R12), gap G1.6). Default true.
     #[serde(default = "default_true")]
@@ -415,7 +416,7 @@ impl RockfillGp {
 
     /// Elastic matrix D^e (kPa) at a tension-positive stress in kPa (spec (R2), (R3)).
     fn elastic_kpa(&self, sigma: &Vector6) -> Matrix6 {
-        let p = -(sigma[0] + sigma[1] + sigma[2]) / 3.0;
+        let p = invariants_compression_positive(sigma).p;
         let (k, g) = self.moduli(p.max(self.pmin));
         bulk_shear_stiffness(k, g)
     }
@@ -904,12 +905,17 @@ mod tests {
         assert_eq!(parsed, p);
         let with_options = json.replace(
             "7.5}",
-            r#"7.5, "lode": "off", "xi_rule": "flow_component", "integration": {"stol": 1e-5}}"#,
+            r#"7.5, "lode": "off", "xi_rule": "flow_component", "hden_on_HU": false, "integration": {"stol": 1e-5}}"#,
         );
         let parsed: RockfillGpParams = serde_json::from_str(&with_options).expect("options");
         assert_eq!(
-            (parsed.lode, parsed.xi_rule, parsed.integration.stol),
-            (Lode::Off, XiRule::FlowComponent, 1e-5)
+            (
+                parsed.lode,
+                parsed.xi_rule,
+                parsed.hden_on_hu,
+                parsed.integration.stol
+            ),
+            (Lode::Off, XiRule::FlowComponent, false, 1e-5)
         );
         assert!(
             serde_json::from_str::<RockfillGpParams>(&json.replace("7.5}", r#"7.5, "G00": 1}"#)).is_err()
