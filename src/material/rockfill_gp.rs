@@ -966,8 +966,18 @@ mod tests {
         assert!(rel(k, 158.7e3) < 1e-3 && rel(g, 149.4e3) < 1e-3, "{k} {g}");
         let (k, g) = m.moduli(1000.0);
         assert!(rel(k, 425e3) < 2e-3 && rel(g, 400e3) < 2e-3, "{k} {g}");
-        // Below p_min the floor applies.
-        assert_eq!(m.moduli(m.pmin), m.moduli(m.pmin));
+        // Below p_min (5.065 kPa) the floor applies: D^e at p = 2 kPa equals D^e at p_min.
+        let low = m.init_state(&Stress6::isotropic(-2.0e3)).expect("p0 = 2 kPa");
+        let floor = m
+            .init_state(&Stress6::isotropic(-m.params.pmin))
+            .expect("p0 = p_min");
+        assert!(!low.cut, "2 kPa is above the cut-off (1.013 kPa)");
+        assert!(
+            (m.elastic_tangent(&low).0 - m.elastic_tangent(&floor).0).norm()
+                < 1e-9 * m.elastic_tangent(&floor).0.norm()
+        );
+        let above = m.init_state(&Stress6::isotropic(-10.0e3)).expect("p0 = 10 kPa");
+        assert!(m.elastic_tangent(&above).0[(0, 0)] > m.elastic_tangent(&floor).0[(0, 0)]);
         let s = m.init_state(&Stress6::isotropic(-1.0)).expect("init");
         assert!(s.cut, "1 Pa is below the tension cut-off and is reset to p_min");
         assert!((s.stress.0[0] + m.params.pmin).abs() < 1e-9);
