@@ -239,10 +239,10 @@ impl<'a, M: SolidModel> MaterialPointDriver<'a, M> {
         }
         let sig0 = M::stress(&self.state).0;
         // Predictor with the last tangent (or the model's tangent at zero increment).
-        let mut tangent = match (&self.tangent, use_elastic) {
-            (_, true) => (self.elastic_tangent.as_ref().expect("checked"))(&self.state),
-            (Some(t), false) => *t,
-            (None, false) => self.model.update(&self.state, &Strain6::default())?.tangent,
+        let mut tangent = match (use_elastic, &self.elastic_tangent, &self.tangent) {
+            (true, Some(elastic), _) => elastic(&self.state),
+            (_, _, Some(t)) => *t,
+            _ => self.model.update(&self.state, &Strain6::default())?.tangent,
         };
         if !stress_idx.is_empty() {
             let rhs_full = target - sig0 - tangent.0 * d_eps;

@@ -63,7 +63,25 @@
 //!    or after accepted substeps: memory surfaces, reversal points, flags).
 //! 2. Implement [`GpModelFunctions`] on the model (model units are free: kPa for the spec's
 //!    models; convert once at the `SolidModel`/`InterfaceModel` boundary).
-//! 3. Call [`integrate`] with the committed point and the total step increment.
+//! 3. Call [`integrate`] with the committed point, the total step increment and the branch
+//!    of the committed state (store [`IntegrationResult::last_branch`] in the model state:
+//!    it selects the tangent of a zero increment).
+//!
+//! Points to know when writing the model functions:
+//! * `begin_substep` works on a copy of the point: if the substep is rejected the copy,
+//!   with any memory change (e.g. a new reversal point), is dropped and the retry calls
+//!   `begin_substep` again from the unchanged point.
+//! * `loading_indicator` must be the cosine nᵀdσe/(|n||dσe|) (a value in [−1, 1]); the flip
+//!   test compares it with ±tolN and the retry size interpolates it linearly. Use norms that
+//!   are invariant for your frame if you want frame-invariant substep sequences.
+//! * `plastic_data` may return `h = f64::INFINITY` (elastic branch); the denominator guard
+//!   and the "elastic" threshold [`H_ELASTIC`] are applied by the integrator.
+//! * `kappa_increment` receives dλ with its sign (negative on unloading: take `abs()` for
+//!   accumulated quantities) and is also called on elastic stages.
+//! * `after_accept` is the only place for discontinuous updates (cut-offs, opening, memory
+//!   surfaces); it may return [`Branch::Elastic`] to make the tangent elastic.
+//! * `error_scales` gives absolute floors: the stress floor in model units (p_a or σ_min),
+//!   one floor per κ entry (`f64::INFINITY` excludes an entry).
 //!
 //! # References
 //! Sloan S.W., Abbo A.J., Sheng D. (2001). Refined explicit integration of elastoplastic
