@@ -38,15 +38,30 @@ fn cases() -> Vec<(&'static str, String, Vec<(&'static str, String)>, &'static s
         )
     };
     vec![
-        ("malformed yaml", "name: t\nunits: SI\nmesh: {box: [1, 2\n".to_string(), vec![], "line"),
-        ("unknown key", GOOD.replace("loads:", "lods:"), vec![], "unknown field `lods`"),
+        (
+            "malformed yaml",
+            "name: t\n  units: [SI\nmesh: {\n".to_string(),
+            vec![],
+            "line",
+        ),
+        (
+            "unknown key",
+            GOOD.replace("loads:", "lods:"),
+            vec![],
+            "unknown field `lods`",
+        ),
         (
             "unknown material key",
             GOOD.replace("poisson: 0.3", "poisson: 0.3, youngs: 1.0"),
             vec![],
             "materials.soil",
         ),
-        ("missing mesh", gmsh_scene("nowhere.msh", "core"), vec![], "nowhere.msh"),
+        (
+            "missing mesh",
+            gmsh_scene("nowhere.msh", "core"),
+            vec![],
+            "nowhere.msh",
+        ),
         (
             "inverted element",
             gmsh_scene("inverted.msh", "core"),
@@ -59,11 +74,39 @@ fn cases() -> Vec<(&'static str, String, Vec<(&'static str, String)>, &'static s
             vec![("good.msh", msh([1, 2, 3, 4, 5, 6, 7, 8]))],
             "blocks.dam_core",
         ),
-        ("wrong unit system", GOOD.replace("units: SI", "units: kPa"), vec![], "units"),
-        ("modulus in MPa", GOOD.replace("young: 5.0e7", "young: 50.0"), vec![], "materials.soil.young"),
-        ("negative modulus", GOOD.replace("young: 5.0e7", "young: -5.0e7"), vec![], "materials.soil.young"),
-        ("unknown set", GOOD.replace("set: zmin", "set: bottom"), vec![], "boundary[0].set"),
-        ("bad petsc option", GOOD.replace("loads:", "solver: { petsc_options: '-ksp_type nonsense' }\nloads:"), vec![], "PETSc"),
+        (
+            "wrong unit system",
+            GOOD.replace("units: SI", "units: kPa"),
+            vec![],
+            "units",
+        ),
+        (
+            "modulus in MPa",
+            GOOD.replace("young: 5.0e7", "young: 50.0"),
+            vec![],
+            "materials.soil.young",
+        ),
+        (
+            "negative modulus",
+            GOOD.replace("young: 5.0e7", "young: -5.0e7"),
+            vec![],
+            "materials.soil.young",
+        ),
+        (
+            "unknown set",
+            GOOD.replace("set: zmin", "set: bottom"),
+            vec![],
+            "boundary[0].set",
+        ),
+        (
+            "bad petsc option",
+            GOOD.replace(
+                "loads:",
+                "solver: { petsc_options: '-ksp_type nonsense' }\nloads:",
+            ),
+            vec![],
+            "PETSc",
+        ),
     ]
 }
 
@@ -75,21 +118,41 @@ fn bad_input_exits_2_with_a_clear_message_at_two_ranks() {
         for (name, body) in &files {
             std::fs::write(dir.path().join(name), body).unwrap();
         }
-        for args in [vec!["run", "scene.yaml", "-o", "out"], vec!["check", "scene.yaml"]] {
+        for args in [
+            vec!["run", "scene.yaml", "-o", "out"],
+            vec!["check", "scene.yaml"],
+        ] {
             if case == "bad petsc option" && args[0] == "check" {
                 continue; // PETSc options are checked when the solver is set up
             }
             let t = std::time::Instant::now();
             let o = cfrd_mpi(2, dir.path(), &args);
             let msg = text(&o);
-            assert_eq!(o.status.code(), Some(2), "{case} ({}): exit {:?}\n{msg}", args[0], o.status.code());
-            assert!(msg.contains(expect), "{case} ({}): message lacks '{expect}':\n{msg}", args[0]);
+            assert_eq!(
+                o.status.code(),
+                Some(2),
+                "{case} ({}): exit {:?}\n{msg}",
+                args[0],
+                o.status.code()
+            );
+            assert!(
+                msg.contains(expect),
+                "{case} ({}): message lacks '{expect}':\n{msg}",
+                args[0]
+            );
             assert!(msg.contains("error:"), "{case}: no error line:\n{msg}");
             assert!(!msg.contains("panicked"), "{case}: panic:\n{msg}");
             assert!(t.elapsed().as_secs() < 60, "{case}: took {:?}", t.elapsed());
-            println!("{case} ({}): {}", args[0], msg.lines().find(|l| l.contains("error:")).unwrap_or(""));
+            println!(
+                "{case} ({}): {}",
+                args[0],
+                msg.lines().find(|l| l.contains("error:")).unwrap_or("")
+            );
         }
-        assert!(!dir.path().join("out/results.h5").exists(), "{case}: results written despite the error");
+        assert!(
+            !dir.path().join("out/results.h5").exists(),
+            "{case}: results written despite the error"
+        );
     }
 }
 
@@ -99,7 +162,11 @@ fn check_accepts_a_good_scene_and_schema_is_json() {
     std::fs::write(dir.path().join("scene.yaml"), GOOD).unwrap();
     let o = cfrd(dir.path(), &["check", "scene.yaml"]);
     assert!(o.status.success(), "{}", text(&o));
-    assert!(text(&o).contains("ok (27 nodes") || text(&o).contains("ok (12 nodes"), "{}", text(&o));
+    assert!(
+        text(&o).contains("ok (27 nodes") || text(&o).contains("ok (12 nodes"),
+        "{}",
+        text(&o)
+    );
     let o = cfrd(dir.path(), &["schema"]);
     assert!(o.status.success());
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("schema is JSON");

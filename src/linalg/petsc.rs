@@ -170,8 +170,13 @@ impl Vector {
         call!(VecGetLocalSize(self.raw, &mut n))?;
         let mut ptr: *const f64 = null();
         call!(VecGetArrayRead(self.raw, &mut ptr))?;
-        // SAFETY: PETSc guarantees `n` readable entries until VecRestoreArrayRead.
-        let r = f(unsafe { std::slice::from_raw_parts(ptr, n as usize) });
+        // SAFETY: PETSc guarantees `n` readable entries until VecRestoreArrayRead (the pointer
+        // may be null when the rank holds no entries).
+        let r = if n == 0 || ptr.is_null() {
+            f(&[])
+        } else {
+            f(unsafe { std::slice::from_raw_parts(ptr, n as usize) })
+        };
         call!(VecRestoreArrayRead(self.raw, &mut ptr))?;
         Ok(r)
     }
@@ -182,8 +187,13 @@ impl Vector {
         call!(VecGetLocalSize(self.raw, &mut n))?;
         let mut ptr: *mut f64 = null_mut();
         call!(VecGetArray(self.raw, &mut ptr))?;
-        // SAFETY: PETSc guarantees `n` writable entries until VecRestoreArray.
-        let r = f(unsafe { std::slice::from_raw_parts_mut(ptr, n as usize) });
+        // SAFETY: PETSc guarantees `n` writable entries until VecRestoreArray (the pointer may be
+        // null when the rank holds no entries).
+        let r = if n == 0 || ptr.is_null() {
+            f(&mut [])
+        } else {
+            f(unsafe { std::slice::from_raw_parts_mut(ptr, n as usize) })
+        };
         call!(VecRestoreArray(self.raw, &mut ptr))?;
         Ok(r)
     }

@@ -133,6 +133,8 @@ pub struct InterfaceOutputs {
 pub enum SolidParams {
     /// Isotropic linear elasticity.
     Elastic(elastic::ElasticParams),
+    /// Generalized-plasticity rockfill (spec §1); omitted keys take seed Table 1 values.
+    RockfillGp(rockfill_gp::RockfillGpParams),
 }
 
 impl SolidParams {
@@ -140,12 +142,14 @@ impl SolidParams {
     pub fn validate(&self) -> Result<(), crate::error::ParamError> {
         match self {
             SolidParams::Elastic(p) => p.validate(),
+            SolidParams::RockfillGp(p) => p.validate(),
         }
     }
     /// Mass density (kg/m³).
     pub fn density(&self) -> f64 {
         match self {
             SolidParams::Elastic(p) => p.density,
+            SolidParams::RockfillGp(p) => p.density,
         }
     }
 }

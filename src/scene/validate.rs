@@ -172,10 +172,16 @@ pub fn parse(text: &str, source: &str) -> Result<SceneFile, SceneError> {
             p if p == "?" || p == "." => "(document)".to_string(),
             p => p,
         };
+        let message = e.into_inner().to_string();
+        // serde_yaml may start its message with (part of) the path again
+        let message = match message.split_once(": ") {
+            Some((head, rest)) if path.starts_with(head) => rest.to_string(),
+            _ => message,
+        };
         SceneError::Parse {
             file: source.to_string(),
             path,
-            message: e.into_inner().to_string(),
+            message,
         }
     })
 }

@@ -7,6 +7,7 @@ use crate::element::hex8::Hex8Geometry;
 use crate::element::quadrature::HEX_GAUSS_POINTS;
 use crate::error::MaterialError;
 use crate::material::elastic::LinearElastic;
+use crate::material::rockfill_gp::RockfillGp;
 use crate::material::{SolidModel, SolidParams};
 use crate::tensor::{Stress6, Tangent6};
 use nalgebra::{SMatrix, SVector};
@@ -30,6 +31,19 @@ pub struct ModelStates<M: SolidModel> {
 pub enum SolidBlock {
     /// Linear elastic.
     Elastic(ModelStates<LinearElastic>),
+    /// Generalized-plasticity rockfill.
+    RockfillGp(ModelStates<RockfillGp>),
+}
+
+/// Runs `$body` with `$ms` bound to the block's `ModelStates`, whatever the model (the match
+/// happens once per call, the body is monomorphized per model).
+macro_rules! with_states {
+    ($block:expr, $ms:ident => $body:expr) => {
+        match $block {
+            SolidBlock::Elastic($ms) => $body,
+            SolidBlock::RockfillGp($ms) => $body,
+        }
+    };
 }
 
 /// What an element evaluation returns.
@@ -55,6 +69,15 @@ impl SolidBlock {
                     store: QpStore::new(n, init),
                 })
             }
+            SolidParams::RockfillGp(p) => {
+                let model = RockfillGp::new(p.clone()).map_err(|e| MaterialError::new(e.to_string()))?;
+                // a point placed without stress starts at the pressure floor p_min (spec §8.6 item 1)
+                let init = model.init_state(&Stress6::isotropic(-p.pmin))?;
+                SolidBlock::RockfillGp(ModelStates {
+                    model,
+                    store: QpStore::new(n, init),
+                })
+            }
         })
     }
 
@@ -67,30 +90,22 @@ impl SolidBlock {
         d_u: &Vector24,
         want_k: bool,
     ) -> Result<ElementResponse, MaterialError> {
-        match self {
-            SolidBlock::Elastic(ms) => evaluate_element(ms, e, geo, d_u, want_k),
-        }
+        with_states!(self, ms => evaluate_element(ms, e, geo, d_u, want_k))
     }
 
     /// Mean committed stress over the Gauss points of element `e` (block-local index).
     pub fn mean_stress(&self, e: usize) -> Stress6 {
-        match self {
-            SolidBlock::Elastic(ms) => mean_committed_stress(ms, e),
-        }
+        with_states!(self, ms => mean_committed_stress(ms, e))
     }
 
     /// Accepts the trial states.
     pub fn commit(&mut self) {
-        match self {
-            SolidBlock::Elastic(ms) => ms.store.commit(),
-        }
+        with_states!(self, ms => ms.store.commit())
     }
 
     /// Discards the trial states.
     pub fn revert(&mut self) {
-        match self {
-            SolidBlock::Elastic(ms) => ms.store.revert(),
-        }
+        with_states!(self, ms => ms.store.revert())
     }
 }
 

@@ -186,7 +186,10 @@ impl<'a> StaticProblem<'a> {
         u_committed.set_all(0.0)?;
         let gather = Gather::new(&u, &disc.local_dofs)?;
         let gather_committed = Gather::new(&u, &disc.local_dofs)?;
-        let ksp = Ksp::new(petsc, scene.file.solver.rtol, scene.file.solver.max_iterations)?;
+        let mut ksp = Ksp::new(petsc, scene.file.solver.rtol, scene.file.solver.max_iterations)?;
+        // options (scene and command line) are applied here, so a bad one is an input error;
+        // PETSc rebuilds the preconditioner whenever the matrix has changed
+        ksp.set_operator(&k)?;
         Ok(StaticProblem {
             scene,
             disc,
@@ -338,7 +341,6 @@ impl<'a> StaticProblem<'a> {
         let mut r = self.u.duplicate()?;
         let mut du = self.u.duplicate()?;
         let rows: Vec<i32> = self.fixed.iter().map(|f| f.0).collect();
-        let mut ksp_ready = false;
         for it in 0..=opts.newton_max_iterations {
             let t0 = Instant::now();
             self.assemble(&mut f_int, true)?;
@@ -382,10 +384,6 @@ impl<'a> StaticProblem<'a> {
             // K δu = r with δu prescribed on the fixed DOFs
             self.k
                 .zero_rows_columns(&rows, self.dirichlet_diag, &du, &mut r)?;
-            if !ksp_ready {
-                self.ksp.set_operator(&self.k)?;
-                ksp_ready = true;
-            }
             let t1 = Instant::now();
             let stats: SolveStats = self.ksp.solve(&r, &mut du)?;
             report.solve_seconds += t1.elapsed().as_secs_f64();

@@ -18,11 +18,19 @@ fn mpi_command(np: usize) -> Command {
             cmd.env_remove(k);
         }
     }
-    cmd.args(["-n", &np.to_string(), "--oversubscribe", "--bind-to", "none", "--timeout", "300"])
-        .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
-        .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
-        .env("OMPI_MCA_btl_vader_single_copy_mechanism", "none")
-        .stdin(Stdio::null());
+    cmd.args([
+        "-n",
+        &np.to_string(),
+        "--oversubscribe",
+        "--bind-to",
+        "none",
+        "--timeout",
+        "300",
+    ])
+    .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
+    .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
+    .env("OMPI_MCA_btl_vader_single_copy_mechanism", "none")
+    .stdin(Stdio::null());
     cmd
 }
 
@@ -35,12 +43,21 @@ pub fn cfrd_mpi(np: usize, dir: &Path, args: &[&str]) -> Output {
 
 /// Runs `cfrd ARGS` as a plain process (an MPI singleton) in `dir`.
 pub fn cfrd(dir: &Path, args: &[&str]) -> Output {
-    Command::new(cfrd_bin()).args(args).current_dir(dir).stdin(Stdio::null()).output().expect("cfrd starts")
+    Command::new(cfrd_bin())
+        .args(args)
+        .current_dir(dir)
+        .stdin(Stdio::null())
+        .output()
+        .expect("cfrd starts")
 }
 
 /// stdout + stderr as text.
 pub fn text(o: &Output) -> String {
-    format!("{}{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr))
+    format!(
+        "{}{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    )
 }
 
 /// A fresh temporary directory.
@@ -51,13 +68,19 @@ pub fn tempdir() -> tempfile::TempDir {
 /// Reads a whole f64 dataset of a results file (serial HDF5, no MPI needed).
 pub fn read_f64(path: &Path, dataset: &str) -> Vec<f64> {
     let f = hdf5::File::open(path).expect("open results");
-    f.dataset(dataset).expect("dataset").read_raw::<f64>().expect("read")
+    f.dataset(dataset)
+        .expect("dataset")
+        .read_raw::<f64>()
+        .expect("read")
 }
 
 /// Reads a whole i64 dataset of a results file.
 pub fn read_i64(path: &Path, dataset: &str) -> Vec<i64> {
     let f = hdf5::File::open(path).expect("open results");
-    f.dataset(dataset).expect("dataset").read_raw::<i64>().expect("read")
+    f.dataset(dataset)
+        .expect("dataset")
+        .read_raw::<i64>()
+        .expect("read")
 }
 
 /// Names of all datasets under a group, sorted, with their shapes.
