@@ -1,1 +1,152 @@
-//! Placeholder: being written (see material/mod.rs).
+//! Bilinear elastic law of the slab joints (vertical and perimeter joints; spec §6.1 (J1)–(J3),
+//! §6.2).
+//!
+//! The law is path-independent: the traction is a function of the total jump only. The local
+//! frame of the [`super::InterfaceModel`] contract is used as is: components 0 and 1 are the two
+//! in-plane shear directions of the joint (spec §6.1: e_1 up-slope, e_2 slab normal), component 2
+//! the joint normal with δ_n > 0 opening.
+
+use super::{InterfaceModel, InterfaceOutputs, InterfaceUpdate, TangentKind};
+use crate::error::{require_positive, MaterialError, ParamError};
+use crate::tensor::{Local3, Tangent3};
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// Parameters of the joint law (seed §2.2(2) values in SI by default).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct JointParams {
+    /// Normal stiffness in compression k_c (Pa/m). Seed: 25 GPa/m = 2.5×10¹⁰ Pa/m.
+    pub kn_comp: f64,
+    /// Normal stiffness in opening (tension) k_t (Pa/m). Seed: 5 MPa/m = 5×10⁶ Pa/m.
+    pub kn_tens: f64,
+    /// Shear stiffness k_s in both in-plane directions (Pa/m). Seed: 1 MPa/m = 1×10⁶ Pa/m.
+    pub ks: f64,
+}
+
+impl Default for JointParams {
+    fn default() -> Self {
+        JointParams {
+            kn_comp: 2.5e10,
+            kn_tens: 5.0e6,
+            ks: 1.0e6,
+        }
+    }
+}
+
+impl JointParams {
+    /// Checks that the three stiffnesses are positive.
+    pub fn validate(&self) -> Result<(), ParamError> {
+        require_positive("kn_comp", self.kn_comp)?;
+        require_positive("kn_tens", self.kn_tens)?;
+        require_positive("ks", self.ks)
+    }
+}
+
+/// State of a joint point: the total jump and the traction it produces.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct JointState {
+    /// Total jump δ = (δ_1, δ_2, δ_n) from the stress-free position (m), δ_n > 0 opening.
+    pub jump: [f64; 3],
+    /// Traction T = (τ_1, τ_2, t_n) (Pa), t_n tension positive.
+    pub traction: [f64; 3],
+}
+
+/// The bilinear joint law (spec §6.1).
+#[derive(Debug, Clone, PartialEq)]
+pub struct JointLaw {
+    p: JointParams,
+}
+
+impl JointLaw {
+    /// Builds the law (parameters must have passed [`JointParams::validate`]).
+    pub fn new(p: &JointParams) -> Self {
+        JointLaw { p: p.clone() }
+    }
+
+    /// Normal stiffness k_n(δ_n) of (J1): k_c for closure (δ_n ≤ 0), k_t for opening.
+    pub fn normal_stiffness(&self, jump_n: f64) -> f64 {
+        if jump_n > 0.0 {
+            self.p.kn_tens
+        } else {
+            self.p.kn_comp
+        }
+    }
+
+    /// Traction of a total jump (spec (J1), (J2)):
+    ///
+    /// ```text
+    /// t_n = −σ_n = k_n(δ_n)·δ_n,   τ_i = k_s·δ_i   (no friction limit)
+    /// ```
+    pub fn traction_of(&self, jump: &Local3) -> Local3 {
+        Local3::new(
+            self.p.ks * jump[0],
+            self.p.ks * jump[1],
+            self.normal_stiffness(jump[2]) * jump[2],
+        )
+    }
+}
+
+impl InterfaceModel for JointLaw {
+    type State = JointState;
+
+    fn symmetric_tangent(&self) -> bool {
+        true
+    }
+
+    /// A joint under compressive σ_n0 sits at δ_n = −σ_n0/k_c.
+    fn init_state(&self, sigma_n0: f64) -> Result<JointState, MaterialError> {
+        if !(sigma_n0.is_finite() && sigma_n0 >= 0.0) {
+            return Err(MaterialError::new(format!(
+                "initial normal stress must be finite and >= 0, got {sigma_n0} Pa"
+            )));
+        }
+        let jump = Local3::new(0.0, 0.0, -sigma_n0 / self.p.kn_comp);
+        let t = self.traction_of(&jump);
+        Ok(JointState {
+            jump: [jump[0], jump[1], jump[2]],
+            traction: [t[0], t[1], t[2]],
+        })
+    }
+
+    /// Path-independent update; the tangent (J3) is diag(k_s, k_s, k_n(δ_n,end)). Because the law
+    /// is piecewise linear through the origin, this operator is also the exact secant T = D·δ.
+    fn update(
+        &self,
+        prev: &JointState,
+        d_jump: &Local3,
+    ) -> Result<InterfaceUpdate<JointState>, MaterialError> {
+        let jump = Local3::from(prev.jump) + d_jump;
+        if !jump.iter().all(|v| v.is_finite()) {
+            return Err(MaterialError::new("non-finite joint jump"));
+        }
+        let t = self.traction_of(&jump);
+        let tangent =
+            Tangent3::from_diagonal(&Local3::new(self.p.ks, self.p.ks, self.normal_stiffness(jump[2])));
+        Ok(InterfaceUpdate {
+            state: JointState {
+                jump: [jump[0], jump[1], jump[2]],
+                traction: [t[0], t[1], t[2]],
+            },
+            tangent,
+            kind: TangentKind::Secant,
+            substeps: 1,
+        })
+    }
+
+    fn traction(state: &JointState) -> Local3 {
+        Local3::from(state.traction)
+    }
+
+    /// Shear = (δ_1, δ_2); normal = closure ⟨−δ_n⟩; opening = ⟨δ_n⟩ (spec §6.2 outputs).
+    fn outputs(state: &JointState) -> InterfaceOutputs {
+        let jn = state.jump[2];
+        InterfaceOutputs {
+            shear: [state.jump[0], state.jump[1]],
+            normal: (-jn).max(0.0),
+            opening: jn.max(0.0),
+            open: jn > 0.0,
+            plastic: false,
+        }
+    }
+}

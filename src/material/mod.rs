@@ -13,6 +13,7 @@ use crate::error::MaterialError;
 use crate::tensor::{Local3, Strain6, Stress6, Tangent3, Tangent6};
 use serde::{de::DeserializeOwned, Serialize};
 
+pub mod driver_interface;
 pub mod elastic;
 pub mod gp_integrator;
 pub mod interface_gp;
@@ -122,4 +123,102 @@ pub struct InterfaceOutputs {
     pub open: bool,
     /// Whether the point is slipping / on the plastic branch in its last update.
     pub plastic: bool,
+}
+
+/// Parameters of any solid model, as written in a scene or a point-test file (`model:` tag).
+///
+/// Adding a model: one variant here, one arm in [`SolidParams::validate`], [`SolidParams::name`]
+/// and [`SolidParams::visit`].
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
+#[serde(tag = "model", rename_all = "snake_case")]
+pub enum SolidParams {
+    /// Isotropic linear elasticity (spec §6.3).
+    Elastic(elastic::ElasticParams),
+}
+
+/// An operation generic over the solid model type, run by [`SolidParams::visit`] with the model
+/// built from the parameters (enum dispatch once, monomorphized code inside).
+pub trait SolidVisitor {
+    /// What the operation returns.
+    type Output;
+    /// Runs the operation on a model.
+    fn visit<M: SolidModel>(self, model: &M) -> Self::Output;
+}
+
+impl SolidParams {
+    /// Checks the parameters of the selected model.
+    pub fn validate(&self) -> Result<(), crate::error::ParamError> {
+        match self {
+            SolidParams::Elastic(p) => p.validate(),
+        }
+    }
+
+    /// The `model:` tag of the variant.
+    pub fn name(&self) -> &'static str {
+        match self {
+            SolidParams::Elastic(_) => "elastic",
+        }
+    }
+
+    /// Builds the model and runs `visitor` on it.
+    pub fn visit<V: SolidVisitor>(&self, visitor: V) -> V::Output {
+        match self {
+            SolidParams::Elastic(p) => visitor.visit(&elastic::LinearElastic::new(p)),
+        }
+    }
+}
+
+/// Parameters of any interface or joint law, as written in a scene or a point-test file
+/// (`model:` tag). Omitted fields take the seed's values (Tables 3, 4 and the joint values).
+///
+/// Adding a law: one variant here, one arm in [`InterfaceParams::validate`],
+/// [`InterfaceParams::name`] and [`InterfaceParams::visit`].
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
+#[serde(tag = "model", rename_all = "snake_case")]
+pub enum InterfaceParams {
+    /// Clough–Duncan hyperbolic interface (spec §3).
+    Hyperbolic(interface_hyperbolic::HyperbolicParams),
+    /// Ideal elasto-plastic Mohr–Coulomb interface (spec §4).
+    MohrCoulomb(interface_mc::MohrCoulombParams),
+    /// Bilinear slab joint (spec §6.1).
+    Joint(joint::JointParams),
+}
+
+/// An operation generic over the interface model type, run by [`InterfaceParams::visit`].
+pub trait InterfaceVisitor {
+    /// What the operation returns.
+    type Output;
+    /// Runs the operation on a model.
+    fn visit<M: InterfaceModel>(self, model: &M) -> Self::Output;
+}
+
+impl InterfaceParams {
+    /// Checks the parameters of the selected law.
+    pub fn validate(&self) -> Result<(), crate::error::ParamError> {
+        match self {
+            InterfaceParams::Hyperbolic(p) => p.validate(),
+            InterfaceParams::MohrCoulomb(p) => p.validate(),
+            InterfaceParams::Joint(p) => p.validate(),
+        }
+    }
+
+    /// The `model:` tag of the variant.
+    pub fn name(&self) -> &'static str {
+        match self {
+            InterfaceParams::Hyperbolic(_) => "hyperbolic",
+            InterfaceParams::MohrCoulomb(_) => "mohr_coulomb",
+            InterfaceParams::Joint(_) => "joint",
+        }
+    }
+
+    /// Builds the law and runs `visitor` on it.
+    pub fn visit<V: InterfaceVisitor>(&self, visitor: V) -> V::Output {
+        match self {
+            InterfaceParams::Hyperbolic(p) => {
+                visitor.visit(&interface_hyperbolic::HyperbolicInterface::new(p))
+            }
+            InterfaceParams::MohrCoulomb(p) => visitor.visit(&interface_mc::MohrCoulombInterface::new(p)),
+            InterfaceParams::Joint(p) => visitor.visit(&joint::JointLaw::new(p)),
+        }
+    }
 }
