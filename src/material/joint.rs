@@ -150,3 +150,120 @@ impl InterfaceModel for JointLaw {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::material::driver_interface::checks::*;
+    use proptest::prelude::*;
+
+    fn seed() -> JointLaw {
+        JointLaw::new(&JointParams::default())
+    }
+
+    /// Newton on δ_n for a target t_n from `from`, with the secant/tangent of (J3); iterations.
+    fn newton_normal(j: &JointLaw, from: &JointState, target_tn: f64) -> (JointState, usize) {
+        let mut d_n = 0.0;
+        for it in 0..50 {
+            let up = j.update(from, &Local3::new(0.0, 0.0, d_n)).unwrap();
+            let r = up.state.traction[2] - target_tn;
+            if r.abs() <= 1e-8 * target_tn.abs().max(1.0) {
+                return (up.state, it);
+            }
+            d_n -= r / up.tangent[(2, 2)];
+        }
+        panic!("no convergence to {target_tn}");
+    }
+
+    /// JT-1: k_c in compression, k_t in opening, tractions continuous at δ_n = 0, and a Newton
+    /// iteration across δ_n = 0 converges without chattering (≤ 3 iterations each way).
+    #[test]
+    fn jt1_compression_opening_continuity() {
+        let j = seed();
+        let s0 = j.init_state(1e6).unwrap();
+        assert!((s0.jump[2] + 1e6 / 2.5e10).abs() < 1e-20 && (s0.traction[2] + 1e6).abs() < 1e-6);
+        let zero = JointState::default();
+        for h in [1e-9, 1e-12, 1e-15] {
+            let tp = j.update(&zero, &Local3::new(0.0, 0.0, h)).unwrap();
+            let tm = j.update(&zero, &Local3::new(0.0, 0.0, -h)).unwrap();
+            assert_eq!(tp.tangent[(2, 2)], 5e6);
+            assert_eq!(tm.tangent[(2, 2)], 2.5e10);
+            assert!(tp.state.traction[2] > 0.0 && tm.state.traction[2] < 0.0);
+            assert!(
+                (tp.state.traction[2] - tm.state.traction[2]).abs() <= (2.5e10 + 5e6) * h * (1.0 + 1e-12)
+            );
+        }
+        let mut state = s0;
+        for target in [2e3, -5e5, 1e3, -1.0, 0.5, -1e6] {
+            let (next, iters) = newton_normal(&j, &state, target);
+            assert!(iters <= 3, "target {target}: {iters} iterations");
+            assert!((next.traction[2] - target).abs() <= 1e-8 * target.abs().max(1.0));
+            state = next;
+        }
+    }
+
+    /// JT-2: combined opening and shear: τ = k_s·δ_s with k_s = 10³ kPa/m whatever the opening.
+    #[test]
+    fn jt2_shear_independent_of_opening() {
+        let j = seed();
+        let s0 = j.init_state(0.0).unwrap();
+        for open in [-1e-4, 0.0, 1e-3, 0.05] {
+            let up = j.update(&s0, &Local3::new(2e-3, -1e-3, open)).unwrap();
+            assert_eq!(up.state.traction[0], 1e6 * 2e-3);
+            assert_eq!(up.state.traction[1], -1e6 * 1e-3);
+            assert_eq!((up.tangent[(0, 0)], up.tangent[(1, 1)]), (1e6, 1e6));
+            let out = JointLaw::outputs(&up.state);
+            assert_eq!(out.opening, open.max(0.0));
+            assert_eq!(up.kind, TangentKind::Secant);
+        }
+        let bad = JointParams {
+            ks: 0.0,
+            ..JointParams::default()
+        };
+        assert_eq!(bad.validate().unwrap_err().field, "ks");
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(64))]
+
+        /// Secant = tangent away from δ_n = 0 (FD), T = D·δ exactly, purity, serde, rotation;
+        /// huge increments and 10,000 cycles are exact because the law is path-independent.
+        #[test]
+        fn properties(s in -0.1..0.1f64, a in -0.1..0.1f64, n in -1e-3..1e-3f64, angle in 0.0..6.3f64) {
+            prop_assume!(n.abs() > 1e-8);
+            let j = seed();
+            let prev = j.init_state(1e5).unwrap();
+            let d = Local3::new(s, a, n);
+            let up = j.update(&prev, &d).unwrap();
+            let fd = fd_tangent(&j, &prev, &d, [1e-9, 1e-9, 1e-10]);
+            prop_assert!(rel_diff(&up.tangent, &fd, 1.0) < 1e-6);
+            let jump = Local3::from(up.state.jump);
+            prop_assert!((up.tangent * jump - JointLaw::traction(&up.state)).norm() < 1e-9);
+            assert_pure_and_serde(&j, &prev, &d);
+            let mut rprev = prev;
+            let r = rotate3(angle, &Local3::from(prev.jump));
+            rprev.jump = [r[0], r[1], r[2]];
+            let rup = j.update(&rprev, &rotate3(angle, &d)).unwrap();
+            prop_assert!((JointLaw::traction(&rup.state) - rotate3(angle, &JointLaw::traction(&up.state))).norm() < 1e-6);
+        }
+    }
+
+    #[test]
+    fn ten_thousand_cycles_return_exactly() {
+        let j = seed();
+        let mut state = j.init_state(2e5).unwrap();
+        let start = state;
+        for _ in 0..10_000 {
+            state = j.update(&state, &Local3::new(0.01, -0.02, 1e-3)).unwrap().state;
+            state = j.update(&state, &Local3::new(-0.01, 0.02, -1e-3)).unwrap().state;
+        }
+        for i in 0..3 {
+            assert!(
+                (state.traction[i] - start.traction[i]).abs() < 1e-6,
+                "{:?} vs {:?}",
+                state,
+                start
+            );
+        }
+    }
+}
