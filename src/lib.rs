@@ -19,4 +19,6 @@ pub mod element;
 pub mod error;
 pub mod material;
 pub mod mesh;
+pub mod plot;
+pub mod point;
 pub mod tensor;
