@@ -322,3 +322,131 @@ pub(crate) mod checks {
         (a - b).abs().max() / b.abs().max().max(floor)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::material::interface_hyperbolic::{HyperbolicInterface, HyperbolicParams};
+    use crate::material::interface_mc::{MohrCoulombInterface, MohrCoulombParams};
+    use crate::material::joint::{JointLaw, JointParams};
+    use crate::material::{InterfaceOutputs, InterfaceUpdate, TangentKind};
+    use crate::tensor::Tangent3;
+
+    /// A dilatant elastic test law: τ = k_s·δ_s, t_n = k_n·(δ_n − tan ψ·‖δ_s‖) (total jump).
+    struct Dilatant {
+        k_s: f64,
+        k_n: f64,
+        tan_psi: f64,
+    }
+
+    impl InterfaceModel for Dilatant {
+        type State = [f64; 6];
+        fn symmetric_tangent(&self) -> bool {
+            false
+        }
+        fn init_state(&self, sigma_n0: f64) -> Result<[f64; 6], MaterialError> {
+            Ok([0.0, 0.0, -sigma_n0 / self.k_n, 0.0, 0.0, -sigma_n0])
+        }
+        fn update(&self, prev: &[f64; 6], d: &Local3) -> Result<InterfaceUpdate<[f64; 6]>, MaterialError> {
+            let j = [prev[0] + d[0], prev[1] + d[1], prev[2] + d[2]];
+            let s = j[0].hypot(j[1]);
+            let t = [
+                self.k_s * j[0],
+                self.k_s * j[1],
+                self.k_n * (j[2] - self.tan_psi * s),
+            ];
+            Ok(InterfaceUpdate {
+                state: [j[0], j[1], j[2], t[0], t[1], t[2]],
+                tangent: Tangent3::from_diagonal(&Local3::new(self.k_s, self.k_s, self.k_n)),
+                kind: TangentKind::Elastic,
+                substeps: 1,
+            })
+        }
+        fn traction(s: &[f64; 6]) -> Local3 {
+            Local3::new(s[3], s[4], s[5])
+        }
+        fn outputs(s: &[f64; 6]) -> InterfaceOutputs {
+            InterfaceOutputs {
+                shear: [s[0], s[1]],
+                ..InterfaceOutputs::default()
+            }
+        }
+    }
+
+    /// CNL keeps σ_n and lets the law dilate by tan ψ·u; CNS raises σ_n by K·δ_n with
+    /// δ_n = k_n·tan ψ·u/(k_n + K) (closed form of the test law), both to 10⁻⁸ relative.
+    #[test]
+    fn cnl_and_cns_against_closed_form() {
+        let law = Dilatant {
+            k_s: 1e6,
+            k_n: 1e8,
+            tan_psi: 0.2,
+        };
+        let inc = shear_path(&[[0.006, 0.008]], 20);
+        let cnl = direct_shear(&law, NormalControl::ConstantLoad { sigma_n: 1e5 }, &inc).unwrap();
+        let k = 5e7;
+        let cns = direct_shear(
+            &law,
+            NormalControl::ConstantStiffness {
+                sigma_n0: 1e5,
+                stiffness: k,
+            },
+            &inc,
+        )
+        .unwrap();
+        for (a, b) in cnl.iter().zip(&cns) {
+            let u = a.jump[0].hypot(a.jump[1]);
+            assert!((a.sigma_n - 1e5).abs() < 1e-8 * 1e5 && (a.jump[2] - 0.2 * u).abs() < 1e-12);
+            let dn = 1e8 * 0.2 * u / (1e8 + k);
+            assert!((b.jump[2] - dn).abs() < 1e-10, "{} vs {dn}", b.jump[2]);
+            assert!((b.sigma_n - (1e5 + k * dn)).abs() < 1e-8 * b.sigma_n);
+        }
+    }
+
+    #[test]
+    fn path_builders() {
+        let w = cyclic_waypoints(0.01, [0.0, 1.0], 2);
+        assert_eq!(
+            w,
+            vec![[0.0, 0.01], [0.0, -0.01], [0.0, 0.01], [0.0, -0.01], [0.0, 0.0]]
+        );
+        let inc = shear_path(&w, 4);
+        assert_eq!(inc.len(), 20);
+        let end: f64 = inc.iter().map(|d| d[1]).sum();
+        assert!(end.abs() < 1e-15);
+        let j = jump_path_increments(&[[1.0, 2.0, 3.0]], 4);
+        assert_eq!(j.len(), 4);
+        assert!((j.iter().sum::<Local3>() - Local3::new(1.0, 2.0, 3.0)).norm() < 1e-15);
+    }
+
+    /// Updates per second of each law (release timing; run with
+    /// `cargo test --release --no-default-features --lib updates_per_second -- --ignored --nocapture`).
+    #[test]
+    #[ignore]
+    fn updates_per_second() {
+        fn rate<M: InterfaceModel>(name: &str, model: &M, label: &str, inc: &[Local3]) {
+            let start = std::time::Instant::now();
+            let rows = jump_path(model, 1e5, inc).unwrap();
+            let secs = start.elapsed().as_secs_f64();
+            let substeps: u64 = rows.iter().map(|r| r.substeps as u64).sum();
+            println!(
+                "{name:<14} {label:<10} {:>10.3e} updates/s  ({} updates, {:.2} substeps/update)",
+                inc.len() as f64 / secs,
+                inc.len(),
+                substeps as f64 / inc.len() as f64
+            );
+        }
+        let n = 200_000;
+        let mono = vec![Local3::new(0.1e-3, 0.05e-3, 0.0); n];
+        let cyc = jump_path_increments(&[[0.01, 0.005, -1e-6], [-0.01, -0.005, 0.0]].repeat(n / 200), 100);
+        let hy = HyperbolicInterface::new(&HyperbolicParams::default());
+        let mc = MohrCoulombInterface::new(&MohrCoulombParams::default());
+        let jt = JointLaw::new(&JointParams::default());
+        rate("hyperbolic", &hy, "monotonic", &mono);
+        rate("hyperbolic", &hy, "cyclic", &cyc);
+        rate("mohr_coulomb", &mc, "monotonic", &mono);
+        rate("mohr_coulomb", &mc, "cyclic", &cyc);
+        rate("joint", &jt, "monotonic", &mono);
+        rate("joint", &jt, "cyclic", &cyc);
+    }
+}

@@ -526,6 +526,10 @@ mod tests {
                 .iter()
                 .map(|&d| closed_form_error(&model(d), sigma_n, 12))
                 .collect();
+            println!(
+                "HY-1 sigma_n = {sigma_n} Pa: max rel. error vs (H4), max_sl_change 0.04/0.02/0.01/0.005: {:?}",
+                errors.iter().map(|e| format!("{e:.3e}")).collect::<Vec<_>>()
+            );
             for w in errors.windows(2) {
                 assert!(w[1] < 0.35 * w[0], "sigma_n {sigma_n}: errors {errors:?}");
             }

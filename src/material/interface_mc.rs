@@ -481,12 +481,14 @@ mod tests {
         let m = seed();
         let prev = loaded(&m, 200e3, [60e3, -20e3]);
         let h = [1e-9, 1e-9, 1e-10];
+        let mut kinds = Vec::new();
         for d in [
             Local3::new(1e-3, 2e-3, -3e-6),
-            Local3::new(20e-3, 15e-3, -5e-6),
-            Local3::new(-2e-3, 30e-3, 2e-6),
+            Local3::new(40e-3, 30e-3, -3e-6),
+            Local3::new(-2e-3, 60e-3, 2e-6),
         ] {
             let up = m.update(&prev, &d).unwrap();
+            kinds.push(up.state.slipping);
             let fd = fd_tangent(&m, &prev, &d, h);
             let err = rel_diff(&up.tangent, &fd, 1.0);
             assert!(
@@ -510,7 +512,12 @@ mod tests {
                 omitted > 1e3 * col_err.max(1e-3),
                 "term not significant: {omitted:.3e} vs {col_err:.3e}"
             );
+            println!(
+                "MC-4 slipping {}: tangent vs FD {err:.2e}; dtau/d(delta_n) error {col_err:.3e} Pa/m with the dks term, {omitted:.3e} Pa/m without",
+                up.state.slipping
+            );
         }
+        assert_eq!(kinds, vec![false, true, true]);
     }
 
     /// ∂τ/∂δ_n of spec §8.3 as printed (without ∂k_s/∂σ_n).

@@ -232,3 +232,59 @@ impl ScalarPath {
         Ok(())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::material::interface_hyperbolic::HyperbolicParams;
+    use crate::material::interface_mc::MohrCoulombParams;
+    use crate::material::joint::JointParams;
+
+    /// Omitted parameters take the seed tables; every variant survives a YAML round trip.
+    #[test]
+    fn interface_params_defaults_and_round_trip() {
+        let p: InterfaceParams = serde_yaml::from_str("model: hyperbolic").unwrap();
+        assert_eq!(p, InterfaceParams::Hyperbolic(HyperbolicParams::default()));
+        let p: InterfaceParams = serde_yaml::from_str("model: mohr_coulomb\nphi: 30.0").unwrap();
+        assert_eq!(
+            p,
+            InterfaceParams::MohrCoulomb(MohrCoulombParams {
+                phi: 30.0,
+                ..MohrCoulombParams::default()
+            })
+        );
+        for p in [
+            InterfaceParams::Hyperbolic(HyperbolicParams {
+                kur: Some(900.0),
+                ..HyperbolicParams::default()
+            }),
+            InterfaceParams::MohrCoulomb(MohrCoulombParams::default()),
+            InterfaceParams::Joint(JointParams::default()),
+        ] {
+            let text = serde_yaml::to_string(&p).unwrap();
+            assert!(text.contains(&format!("model: {}", p.name())), "{text}");
+            assert_eq!(serde_yaml::from_str::<InterfaceParams>(&text).unwrap(), p);
+            p.validate().unwrap();
+        }
+        assert!(serde_yaml::from_str::<InterfaceParams>("model: joint\nkn: 1.0").is_err());
+    }
+
+    #[test]
+    fn path_increments_sum_to_the_waypoints() {
+        let p = ScalarPath::Cyclic(CyclicPath {
+            amplitude: 0.01,
+            mean: 0.002,
+            cycles: 3,
+            steps_per_segment: 7,
+        });
+        let inc = p.increments();
+        assert_eq!(inc.len(), 7 * 7);
+        assert!((inc.iter().sum::<f64>() - 0.002).abs() < 1e-15);
+        assert!(p.validate("test.path").is_ok());
+        let bad = ScalarPath::Monotonic(MonotonicPath {
+            target: 1.0,
+            steps: 0,
+        });
+        assert_eq!(bad.validate("test.path").unwrap_err().0, "test.path.steps");
+    }
+}
