@@ -7,6 +7,16 @@
 //! unloading/reloading, and a stiff penalty spring with opening memory in the normal direction
 //! (the same normal law as the Mohr–Coulomb interface, [`super::interface_mc::ContactStep`]).
 //!
+//! # Behaviour worth knowing (documented by tests)
+//! * A change of σ_n at fixed shear displacement leaves τ unchanged and changes the stiffness
+//!   (hypo-elastic, HY-3). A rise of σ_n lowers SL below SL_max, so further shearing first reloads
+//!   on k_ur; a fall of σ_n below τ/tan φ caps τ at τ_f (H8).
+//! * Under displacement-controlled cycles of fixed amplitude the single stress-level memory of
+//!   (H5) ratchets: reloading on k_ur reaches SL_max before the displacement amplitude, the
+//!   primary curve then raises SL_max, and the loops grow cycle by cycle until τ reaches τ_f,
+//!   where they become stationary (test `hard_cases`). A Masing-type rule would give stable loops
+//!   below τ_f; the spec's rule is kept.
+//!
 //! # References
 //! Clough G.W., Duncan J.M. (1971). Finite element analysis of retaining wall behavior.
 
