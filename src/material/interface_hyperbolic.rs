@@ -21,8 +21,8 @@
 //! Clough G.W., Duncan J.M. (1971). Finite element analysis of retaining wall behavior.
 
 use super::interface_mc::{
-    goodman_outputs, janbu_stiffness, open_tangent, ContactStep, GAMMA_W_DEFAULT, PA_DEFAULT,
-    SIGMA_MIN_DEFAULT,
+    check_initial_normal_stress, check_jump, goodman_outputs, janbu_stiffness, open_tangent, ContactStep,
+    GAMMA_W_DEFAULT, PA_DEFAULT, SIGMA_MIN_DEFAULT,
 };
 use super::{InterfaceModel, InterfaceOutputs, InterfaceUpdate, TangentKind};
 use crate::error::{require_non_negative, require_positive, require_range, MaterialError, ParamError};
@@ -382,11 +382,7 @@ impl InterfaceModel for HyperbolicInterface {
     }
 
     fn init_state(&self, sigma_n0: f64) -> Result<HyperbolicState, MaterialError> {
-        if !(sigma_n0.is_finite() && sigma_n0 >= 0.0) {
-            return Err(MaterialError::new(format!(
-                "initial normal stress must be finite and >= 0, got {sigma_n0} Pa"
-            )));
-        }
+        check_initial_normal_stress(sigma_n0)?;
         Ok(HyperbolicState {
             sigma_n: sigma_n0,
             closure_ref: -sigma_n0 / self.p.k2,
@@ -405,9 +401,7 @@ impl InterfaceModel for HyperbolicInterface {
         prev: &HyperbolicState,
         d_jump: &Local3,
     ) -> Result<InterfaceUpdate<HyperbolicState>, MaterialError> {
-        if !d_jump.iter().all(|v| v.is_finite()) {
-            return Err(MaterialError::new("non-finite jump increment"));
-        }
+        check_jump(d_jump)?;
         let p = &self.p;
         let contact = ContactStep::new(prev.closure, prev.closure_ref, p.k2, d_jump[2]);
         let inc = Vector2::new(d_jump[0], d_jump[1]) * contact.shear_fraction;

@@ -175,6 +175,28 @@ pub fn open_tangent(k_s_min: f64, k2: f64) -> Tangent3 {
     ))
 }
 
+/// Rejects a negative or non-finite activation normal stress (`init_state` of the interface laws).
+pub(crate) fn check_initial_normal_stress(sigma_n0: f64) -> Result<(), MaterialError> {
+    if sigma_n0.is_finite() && sigma_n0 >= 0.0 {
+        Ok(())
+    } else {
+        Err(MaterialError::new(format!(
+            "initial normal stress must be finite and >= 0, got {sigma_n0} Pa"
+        )))
+    }
+}
+
+/// Rejects a non-finite jump increment (`update` of the interface laws).
+pub(crate) fn check_jump(d_jump: &Local3) -> Result<(), MaterialError> {
+    if d_jump.iter().all(|v| v.is_finite()) {
+        Ok(())
+    } else {
+        Err(MaterialError::new(format!(
+            "non-finite jump increment {d_jump:?}"
+        )))
+    }
+}
+
 /// State of an ideal elasto-plastic interface point (spec §4.2, "State variables").
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 pub struct MohrCoulombState {
@@ -235,11 +257,7 @@ impl InterfaceModel for MohrCoulombInterface {
     }
 
     fn init_state(&self, sigma_n0: f64) -> Result<MohrCoulombState, MaterialError> {
-        if !(sigma_n0.is_finite() && sigma_n0 >= 0.0) {
-            return Err(MaterialError::new(format!(
-                "initial normal stress must be finite and >= 0, got {sigma_n0} Pa"
-            )));
-        }
+        check_initial_normal_stress(sigma_n0)?;
         Ok(MohrCoulombState {
             sigma_n: sigma_n0,
             closure_ref: -sigma_n0 / self.p.k2,
@@ -265,9 +283,7 @@ impl InterfaceModel for MohrCoulombInterface {
         prev: &MohrCoulombState,
         d_jump: &Local3,
     ) -> Result<InterfaceUpdate<MohrCoulombState>, MaterialError> {
-        if !d_jump.iter().all(|v| v.is_finite()) {
-            return Err(MaterialError::new("non-finite jump increment"));
-        }
+        check_jump(d_jump)?;
         let p = &self.p;
         let contact = ContactStep::new(prev.closure, prev.closure_ref, p.k2, d_jump[2]);
         let d_shear = Vector2::new(d_jump[0], d_jump[1]);

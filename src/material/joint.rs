@@ -6,6 +6,7 @@
 //! in-plane shear directions of the joint (spec §6.1: e_1 up-slope, e_2 slab normal), component 2
 //! the joint normal with δ_n > 0 opening.
 
+use super::interface_mc::check_initial_normal_stress;
 use super::{InterfaceModel, InterfaceOutputs, InterfaceUpdate, TangentKind};
 use crate::error::{require_positive, MaterialError, ParamError};
 use crate::tensor::{Local3, Tangent3};
@@ -96,11 +97,7 @@ impl InterfaceModel for JointLaw {
 
     /// A joint under compressive σ_n0 sits at δ_n = −σ_n0/k_c.
     fn init_state(&self, sigma_n0: f64) -> Result<JointState, MaterialError> {
-        if !(sigma_n0.is_finite() && sigma_n0 >= 0.0) {
-            return Err(MaterialError::new(format!(
-                "initial normal stress must be finite and >= 0, got {sigma_n0} Pa"
-            )));
-        }
+        check_initial_normal_stress(sigma_n0)?;
         let jump = Local3::new(0.0, 0.0, -sigma_n0 / self.p.kn_comp);
         let t = self.traction_of(&jump);
         Ok(JointState {
