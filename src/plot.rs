@@ -309,18 +309,23 @@ fn load_font() -> Result<(), String> {
         Some(p) => vec![PathBuf::from(p)],
         None => FONT_PATHS.iter().map(PathBuf::from).collect(),
     };
-    let found = candidates
-        .iter()
-        .find_map(|p| std::fs::read(p).ok().map(|b| (p, b)));
-    let Some((path, bytes)) = found else {
-        return Err(format!(
-            "none of {candidates:?} could be read; install fonts-dejavu-core (Debian/Ubuntu) or set \
-             {FONT_ENV}=/path/to/font.ttf"
-        ));
-    };
+    let (path, bytes) = read_font(&candidates)?;
     let bytes: &'static [u8] = Box::leak(bytes.into_boxed_slice());
     plotters::style::register_font(FAMILY, FontStyle::Normal, bytes)
         .map_err(|_| format!("{}: not a usable TrueType font", path.display()))
+}
+
+/// The first readable file of `candidates`, or an error that says how to get a font.
+fn read_font(candidates: &[PathBuf]) -> Result<(PathBuf, Vec<u8>), String> {
+    candidates
+        .iter()
+        .find_map(|p| std::fs::read(p).ok().map(|b| (p.clone(), b)))
+        .ok_or_else(|| {
+            format!(
+                "none of {candidates:?} could be read; install fonts-dejavu-core (Debian/Ubuntu) or set \
+                 {FONT_ENV}=/path/to/font.ttf"
+            )
+        })
 }
 
 #[cfg(test)]
@@ -355,6 +360,17 @@ mod tests {
             bytes.len() > 5000 && bytes.starts_with(b"\x89PNG"),
             "{} bytes",
             bytes.len()
+        );
+    }
+
+    #[test]
+    fn missing_font_says_what_to_install() {
+        let err = read_font(&[PathBuf::from("/nonexistent/font.ttf")]).unwrap_err();
+        assert!(
+            err.contains("fonts-dejavu-core")
+                && err.contains(FONT_ENV)
+                && err.contains("/nonexistent/font.ttf"),
+            "{err}"
         );
     }
 
