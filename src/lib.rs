@@ -16,6 +16,8 @@
 //! | `io` | parallel HDF5 results, XDMF, run summary (feature `native`) |
 //! | `parallel` | MPI start-up, abort-on-panic hook, collective decisions (feature `native`) |
 //! | `run` | the `cfrd run` pipeline (feature `native`) |
+//! | [`point`] | `cfrd point`: material-point tests from YAML, CSV and PNG output |
+//! | [`plot`] | PNG line plots (figures of point tests and dam outputs) |
 //!
 //! The native parallel stack (MPI, PETSc, parallel HDF5, METIS) is behind the default
 //! `native` feature; the constitutive library, the mesh code and the element kernels build
@@ -32,6 +34,8 @@ pub mod material;
 pub mod mesh;
 #[cfg(feature = "native")]
 pub mod parallel;
+pub mod plot;
+pub mod point;
 #[cfg(feature = "native")]
 pub mod run;
 pub mod scene;

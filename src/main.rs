@@ -33,6 +33,15 @@ enum Command {
     },
     /// Print the JSON Schema of the scene format.
     Schema,
+    /// Run material-point tests (triaxial, oedometer, interface direct shear) from a YAML file;
+    /// writes CSV tables and a PNG figure.
+    Point {
+        /// Test file (YAML), e.g. `inputs/point/hyperbolic_cnl_monotonic.yaml`.
+        test: PathBuf,
+        /// Output directory.
+        #[arg(short = 'o', long = "out", default_value = "out/point")]
+        out: PathBuf,
+    },
 }
 
 /// Splits PETSc options (`-word` with more than one letter after a single dash, plus its value
@@ -71,6 +80,16 @@ fn main() -> ExitCode {
             );
             ExitCode::SUCCESS
         }
+        Command::Point { test, out } => match cfrd::point::run_file(&test, &out) {
+            Ok(summary) => {
+                println!("{summary}");
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("error: {e}");
+                ExitCode::from(2)
+            }
+        },
         Command::Check { scene } => with_mpi(|world| {
             let s = cfrd::run::load_scene(world, Some(&scene))?;
             if mpi::topology::Communicator::rank(world) == 0 {

@@ -13,6 +13,7 @@ use crate::error::MaterialError;
 use crate::tensor::{Local3, Strain6, Stress6, Tangent3, Tangent6};
 use serde::{de::DeserializeOwned, Serialize};
 
+pub mod driver_interface;
 pub mod driver_solid;
 pub mod elastic;
 pub mod gp_integrator;
@@ -127,29 +128,118 @@ pub struct InterfaceOutputs {
     pub plastic: bool,
 }
 
-/// Parameters of any solid model, tagged by `model` in YAML (e.g. `model: elastic`).
+/// Parameters of any solid model, as written in a scene or a point-test file (`model:` tag).
+///
+/// Adding a model: one variant here, one arm in [`SolidParams::validate`], [`SolidParams::name`]
+/// and [`SolidParams::visit`].
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
 #[serde(tag = "model", rename_all = "snake_case")]
 pub enum SolidParams {
-    /// Isotropic linear elasticity.
+    /// Isotropic linear elasticity (spec §6.3).
     Elastic(elastic::ElasticParams),
     /// Generalized-plasticity rockfill (spec §1); omitted keys take seed Table 1 values.
     RockfillGp(rockfill_gp::RockfillGpParams),
 }
 
+/// An operation generic over the solid model type, run by [`SolidParams::visit`] with the model
+/// built from the parameters (enum dispatch once, monomorphized code inside).
+pub trait SolidVisitor {
+    /// What the operation returns.
+    type Output;
+    /// Runs the operation on a model.
+    fn visit<M: SolidModel>(self, model: &M) -> Self::Output;
+}
+
 impl SolidParams {
-    /// Checks the parameter values; the error names the field.
+    /// Checks the parameters of the selected model.
     pub fn validate(&self) -> Result<(), crate::error::ParamError> {
         match self {
             SolidParams::Elastic(p) => p.validate(),
             SolidParams::RockfillGp(p) => p.validate(),
         }
     }
+
     /// Mass density (kg/m³).
     pub fn density(&self) -> f64 {
         match self {
             SolidParams::Elastic(p) => p.density,
             SolidParams::RockfillGp(p) => p.density,
         }
+    }
+
+    /// The `model:` tag of the variant.
+    pub fn name(&self) -> &'static str {
+        match self {
+            SolidParams::Elastic(_) => "elastic",
+            SolidParams::RockfillGp(_) => "rockfill_gp",
+        }
+    }
+
+    /// Builds the model and runs `visitor` on it (fails only for invalid parameters).
+    pub fn visit<V: SolidVisitor>(&self, visitor: V) -> Result<V::Output, crate::error::ParamError> {
+        Ok(match self {
+            SolidParams::Elastic(p) => visitor.visit(&elastic::LinearElastic::new(p)),
+            SolidParams::RockfillGp(p) => visitor.visit(&rockfill_gp::RockfillGp::new(p.clone())?),
+        })
+    }
+}
+
+/// Parameters of any interface or joint law, as written in a scene or a point-test file
+/// (`model:` tag). Omitted fields take the seed's values (Tables 3, 4 and the joint values).
+///
+/// Adding a law: one variant here, one arm in [`InterfaceParams::validate`],
+/// [`InterfaceParams::name`] and [`InterfaceParams::visit`].
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
+#[serde(tag = "model", rename_all = "snake_case")]
+pub enum InterfaceParams {
+    /// Clough–Duncan hyperbolic interface (spec §3).
+    Hyperbolic(interface_hyperbolic::HyperbolicParams),
+    /// Ideal elasto-plastic Mohr–Coulomb interface (spec §4).
+    MohrCoulomb(interface_mc::MohrCoulombParams),
+    /// Bilinear slab joint (spec §6.1).
+    Joint(joint::JointParams),
+    /// 3D state-dependent generalized-plasticity interface (spec §2, seed Table 2).
+    GpInterface(interface_gp::GpInterfaceParams),
+}
+
+/// An operation generic over the interface model type, run by [`InterfaceParams::visit`].
+pub trait InterfaceVisitor {
+    /// What the operation returns.
+    type Output;
+    /// Runs the operation on a model.
+    fn visit<M: InterfaceModel>(self, model: &M) -> Self::Output;
+}
+
+impl InterfaceParams {
+    /// Checks the parameters of the selected law.
+    pub fn validate(&self) -> Result<(), crate::error::ParamError> {
+        match self {
+            InterfaceParams::Hyperbolic(p) => p.validate(),
+            InterfaceParams::MohrCoulomb(p) => p.validate(),
+            InterfaceParams::Joint(p) => p.validate(),
+            InterfaceParams::GpInterface(p) => p.validate(),
+        }
+    }
+
+    /// The `model:` tag of the variant.
+    pub fn name(&self) -> &'static str {
+        match self {
+            InterfaceParams::Hyperbolic(_) => "hyperbolic",
+            InterfaceParams::MohrCoulomb(_) => "mohr_coulomb",
+            InterfaceParams::Joint(_) => "joint",
+            InterfaceParams::GpInterface(_) => "gp_interface",
+        }
+    }
+
+    /// Builds the law and runs `visitor` on it (fails only for invalid parameters).
+    pub fn visit<V: InterfaceVisitor>(&self, visitor: V) -> Result<V::Output, crate::error::ParamError> {
+        Ok(match self {
+            InterfaceParams::Hyperbolic(p) => {
+                visitor.visit(&interface_hyperbolic::HyperbolicInterface::new(p))
+            }
+            InterfaceParams::MohrCoulomb(p) => visitor.visit(&interface_mc::MohrCoulombInterface::new(p)),
+            InterfaceParams::Joint(p) => visitor.visit(&joint::JointLaw::new(p)),
+            InterfaceParams::GpInterface(p) => visitor.visit(&interface_gp::GpInterface::new(p.clone())?),
+        })
     }
 }

@@ -1,0 +1,384 @@
+//! Small PNG line plots on `plotters`: a [`Figure`] of several [`Panel`]s laid out in a grid,
+//! each panel with axis titles, a legend and labelled [`Series`].
+//!
+//! Text needs a TrueType font at run time (plotters' `ab_glyph` backend): the font is read once
+//! from `$CFRD_FONT` or, failing that, from the usual DejaVu Sans locations (Debian package
+//! `fonts-dejavu-core`). A missing font is a [`PlotError::Font`], not a panic.
+//!
+//! ```no_run
+//! use cfrd::plot::{Figure, Panel, Series};
+//! let panel = Panel::new("Direct shear", "shear displacement (mm)", "tau (kPa)")
+//!     .with(Series::line("sigma_n = 100 kPa", vec![(0.0, 0.0), (5.0, 22.5), (30.0, 63.0)]));
+//! Figure::new("Hyperbolic interface").with(panel).save_png("shear.png".as_ref()).unwrap();
+//! ```
+
+use plotters::prelude::*;
+use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
+use thiserror::Error;
+
+/// Environment variable naming a TTF font file to use instead of the default search.
+pub const FONT_ENV: &str = "CFRD_FONT";
+/// Where the default font is looked for (Debian `fonts-dejavu-core` first).
+pub const FONT_PATHS: [&str; 4] = [
+    "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
+    "/usr/share/fonts/TTF/DejaVuSans.ttf",
+    "/usr/share/fonts/dejavu/DejaVuSans.ttf",
+    "/usr/local/share/fonts/DejaVuSans.ttf",
+];
+/// Family name under which the font is registered with plotters.
+const FAMILY: &str = "sans-serif";
+
+/// A plot that could not be written.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum PlotError {
+    /// No usable TrueType font.
+    #[error("no usable TrueType font for plots: {0}")]
+    Font(String),
+    /// Drawing or encoding failed.
+    #[error("{path}: cannot write plot: {message}")]
+    Draw {
+        /// The PNG being written.
+        path: PathBuf,
+        /// What went wrong.
+        message: String,
+    },
+}
+
+/// How a series is drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum SeriesStyle {
+    /// A polyline through the points.
+    #[default]
+    Line,
+    /// A small circle at each point.
+    Markers,
+}
+
+/// One labelled data series of a panel.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Series {
+    /// Legend label (empty: not in the legend).
+    pub label: String,
+    /// Points (x, y); non-finite points are skipped.
+    pub points: Vec<(f64, f64)>,
+    /// Line or markers.
+    pub style: SeriesStyle,
+}
+
+impl Series {
+    /// A line series.
+    pub fn line(label: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
+        Series {
+            label: label.into(),
+            points,
+            style: SeriesStyle::Line,
+        }
+    }
+
+    /// A marker series.
+    pub fn markers(label: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
+        Series {
+            label: label.into(),
+            points,
+            style: SeriesStyle::Markers,
+        }
+    }
+}
+
+/// One chart: title, axis titles and its series.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Panel {
+    /// Caption above the chart.
+    pub title: String,
+    /// Title of the x axis (with units).
+    pub x_label: String,
+    /// Title of the y axis (with units).
+    pub y_label: String,
+    /// The data.
+    pub series: Vec<Series>,
+}
+
+impl Panel {
+    /// An empty panel.
+    pub fn new(title: impl Into<String>, x_label: impl Into<String>, y_label: impl Into<String>) -> Self {
+        Panel {
+            title: title.into(),
+            x_label: x_label.into(),
+            y_label: y_label.into(),
+            series: Vec::new(),
+        }
+    }
+
+    /// Adds a series (builder style).
+    pub fn with(mut self, series: Series) -> Self {
+        self.series.push(series);
+        self
+    }
+
+    /// Adds a series.
+    pub fn push(&mut self, series: Series) {
+        self.series.push(series);
+    }
+
+    /// Bounds (x_min, x_max, y_min, y_max) of the finite points, padded by 5 %; a degenerate
+    /// range is widened so that the axis stays drawable.
+    fn bounds(&self) -> (f64, f64, f64, f64) {
+        let mut b = [f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY];
+        for (x, y) in self.series.iter().flat_map(|s| s.points.iter()) {
+            if x.is_finite() && y.is_finite() {
+                b = [b[0].min(*x), b[1].max(*x), b[2].min(*y), b[3].max(*y)];
+            }
+        }
+        let pad = |lo: f64, hi: f64| -> (f64, f64) {
+            if !lo.is_finite() {
+                return (0.0, 1.0);
+            }
+            let span = hi - lo;
+            if span <= 1e-12 * lo.abs().max(hi.abs()).max(1e-300) {
+                let d = if lo == 0.0 { 1.0 } else { 0.1 * lo.abs() };
+                (lo - d, hi + d)
+            } else {
+                (lo - 0.05 * span, hi + 0.05 * span)
+            }
+        };
+        let (x0, x1) = pad(b[0], b[1]);
+        let (y0, y1) = pad(b[2], b[3]);
+        (x0, x1, y0, y1)
+    }
+}
+
+/// A figure: a title and panels laid out row by row in `columns` columns.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Figure {
+    /// Title across the top.
+    pub title: String,
+    /// Panels, row-major.
+    pub panels: Vec<Panel>,
+    /// Number of columns of the grid (≥ 1).
+    pub columns: usize,
+    /// Size of one panel in pixels (width, height).
+    pub panel_size: (u32, u32),
+}
+
+impl Figure {
+    /// An empty figure with 2 columns of 640×480 panels.
+    pub fn new(title: impl Into<String>) -> Self {
+        Figure {
+            title: title.into(),
+            panels: Vec::new(),
+            columns: 2,
+            panel_size: (640, 480),
+        }
+    }
+
+    /// Adds a panel (builder style).
+    pub fn with(mut self, panel: Panel) -> Self {
+        self.panels.push(panel);
+        self
+    }
+
+    /// Adds a panel.
+    pub fn push(&mut self, panel: Panel) {
+        self.panels.push(panel);
+    }
+
+    /// Sets the number of columns (builder style).
+    pub fn columns(mut self, columns: usize) -> Self {
+        self.columns = columns.max(1);
+        self
+    }
+
+    /// Renders the figure into a PNG file.
+    pub fn save_png(&self, path: &Path) -> Result<(), PlotError> {
+        ensure_font()?;
+        let draw_err = |e: &dyn std::fmt::Display| PlotError::Draw {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        };
+        let cols = self.columns.clamp(1, self.panels.len().max(1));
+        let rows = self.panels.len().div_ceil(cols).max(1);
+        let (w, h) = self.panel_size;
+        let title_h = 40;
+        let size = (w * cols as u32, h * rows as u32 + title_h);
+        let root = BitMapBackend::new(path, size).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| draw_err(&e))?;
+        let (top, body) = root.split_vertically(title_h);
+        top.draw_text(
+            &self.title,
+            &TextStyle::from((FAMILY, 24).into_font()).color(&BLACK),
+            (10, 8),
+        )
+        .map_err(|e| draw_err(&e))?;
+        let areas = body.split_evenly((rows, cols));
+        for (panel, area) in self.panels.iter().zip(areas.iter()) {
+            draw_panel(panel, area).map_err(|e| draw_err(&e))?;
+        }
+        root.present().map_err(|e| draw_err(&e))
+    }
+}
+
+/// Colours of successive series.
+const PALETTE: [RGBColor; 8] = [
+    RGBColor(31, 119, 180),
+    RGBColor(214, 39, 40),
+    RGBColor(44, 160, 44),
+    RGBColor(255, 127, 14),
+    RGBColor(148, 103, 189),
+    RGBColor(140, 86, 75),
+    RGBColor(227, 119, 194),
+    RGBColor(23, 190, 207),
+];
+
+/// Compact tick label: fixed notation for moderate magnitudes, scientific otherwise.
+fn tick(v: &f64) -> String {
+    let a = v.abs();
+    if a == 0.0 {
+        "0".to_string()
+    } else if !(1e-3..1e5).contains(&a) {
+        format!("{v:.2e}")
+    } else {
+        let s = format!("{v:.4}");
+        let s = s.trim_end_matches('0').trim_end_matches('.');
+        s.to_string()
+    }
+}
+
+fn draw_panel<DB: DrawingBackend>(
+    panel: &Panel,
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    let (x0, x1, y0, y1) = panel.bounds();
+    let mut chart = ChartBuilder::on(area)
+        .caption(&panel.title, (FAMILY, 18))
+        .margin(12)
+        .x_label_area_size(45)
+        .y_label_area_size(75)
+        .build_cartesian_2d(x0..x1, y0..y1)?;
+    chart
+        .configure_mesh()
+        .x_desc(panel.x_label.as_str())
+        .y_desc(panel.y_label.as_str())
+        .x_label_formatter(&tick)
+        .y_label_formatter(&tick)
+        .label_style((FAMILY, 13))
+        .axis_desc_style((FAMILY, 15))
+        .light_line_style(RGBColor(235, 235, 235))
+        .draw()?;
+    let mut any_label = false;
+    for (i, s) in panel.series.iter().enumerate() {
+        let color = PALETTE[i % PALETTE.len()];
+        let pts: Vec<(f64, f64)> = s
+            .points
+            .iter()
+            .copied()
+            .filter(|(x, y)| x.is_finite() && y.is_finite())
+            .collect();
+        let anno = match s.style {
+            SeriesStyle::Line => chart.draw_series(LineSeries::new(pts, color.stroke_width(2)))?,
+            SeriesStyle::Markers => {
+                chart.draw_series(pts.into_iter().map(|p| Circle::new(p, 3, color.filled())))?
+            }
+        };
+        if !s.label.is_empty() {
+            any_label = true;
+            anno.label(s.label.as_str())
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2)));
+        }
+    }
+    if any_label {
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperLeft)
+            .label_font((FAMILY, 13))
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .draw()?;
+    }
+    Ok(())
+}
+
+/// Loads and registers the TrueType font once per process (see the module docs).
+pub fn ensure_font() -> Result<(), PlotError> {
+    static FONT: OnceLock<Result<(), String>> = OnceLock::new();
+    FONT.get_or_init(load_font).clone().map_err(PlotError::Font)
+}
+
+fn load_font() -> Result<(), String> {
+    let candidates: Vec<PathBuf> = match std::env::var_os(FONT_ENV) {
+        Some(p) => vec![PathBuf::from(p)],
+        None => FONT_PATHS.iter().map(PathBuf::from).collect(),
+    };
+    let (path, bytes) = read_font(&candidates)?;
+    let bytes: &'static [u8] = Box::leak(bytes.into_boxed_slice());
+    plotters::style::register_font(FAMILY, FontStyle::Normal, bytes)
+        .map_err(|_| format!("{}: not a usable TrueType font", path.display()))
+}
+
+/// The first readable file of `candidates`, or an error that says how to get a font.
+fn read_font(candidates: &[PathBuf]) -> Result<(PathBuf, Vec<u8>), String> {
+    candidates
+        .iter()
+        .find_map(|p| std::fs::read(p).ok().map(|b| (p.clone(), b)))
+        .ok_or_else(|| {
+            format!(
+                "none of {candidates:?} could be read; install fonts-dejavu-core (Debian/Ubuntu) or set \
+                 {FONT_ENV}=/path/to/font.ttf"
+            )
+        })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn writes_a_multi_panel_png() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("fig.png");
+        let a = Panel::new("Sine", "x (-)", "y (-)")
+            .with(Series::line(
+                "sin",
+                (0..100)
+                    .map(|i| (i as f64 * 0.1, (i as f64 * 0.1).sin()))
+                    .collect(),
+            ))
+            .with(Series::markers(
+                "pts",
+                vec![(0.0, 0.0), (5.0, 0.5), (f64::NAN, 1.0)],
+            ));
+        let b = Panel::new("Constant", "x", "y").with(Series::line("", vec![(1.0, 2.0), (1.0, 2.0)]));
+        let empty = Panel::new("Empty", "x", "y");
+        Figure::new("Test figure")
+            .with(a)
+            .with(b)
+            .with(empty)
+            .save_png(&path)
+            .unwrap();
+        let bytes = std::fs::read(&path).unwrap();
+        assert!(
+            bytes.len() > 5000 && bytes.starts_with(b"\x89PNG"),
+            "{} bytes",
+            bytes.len()
+        );
+    }
+
+    #[test]
+    fn missing_font_says_what_to_install() {
+        let err = read_font(&[PathBuf::from("/nonexistent/font.ttf")]).unwrap_err();
+        assert!(
+            err.contains("fonts-dejavu-core")
+                && err.contains(FONT_ENV)
+                && err.contains("/nonexistent/font.ttf"),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn tick_labels_are_compact() {
+        assert_eq!(tick(&0.0), "0");
+        assert_eq!(tick(&12.5), "12.5");
+        assert_eq!(tick(&2.0e6), "2.00e6");
+        assert_eq!(tick(&-0.25), "-0.25");
+    }
+}
