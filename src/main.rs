@@ -33,6 +33,18 @@ enum Command {
     },
     /// Print the JSON Schema of the scene format.
     Schema,
+    /// Partition a scene's mesh ahead of time with METIS for a given rank count; the scene then
+    /// names the file in `partition:`.
+    Partition {
+        /// Scene file (YAML).
+        scene: PathBuf,
+        /// Number of parts (the rank count of the run).
+        #[arg(short = 'n', long = "parts")]
+        parts: usize,
+        /// Partition file to write.
+        #[arg(short = 'o', long = "out")]
+        out: PathBuf,
+    },
     /// Run material-point tests (triaxial, oedometer, interface direct shear) from a YAML file;
     /// writes CSV tables and a PNG figure.
     Point {
@@ -90,6 +102,16 @@ fn main() -> ExitCode {
                 ExitCode::from(2)
             }
         },
+        Command::Partition { scene, parts, out } => match partition_ahead(&scene, parts, &out) {
+            Ok(msg) => {
+                println!("{msg}");
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("error: {e}");
+                ExitCode::from(2)
+            }
+        },
         Command::Check { scene } => with_mpi(|world| {
             let s = cfrd::run::load_scene(world, Some(&scene))?;
             if mpi::topology::Communicator::rank(world) == 0 {
@@ -116,6 +138,27 @@ fn main() -> ExitCode {
             Ok(())
         }),
     }
+}
+
+/// `cfrd partition`: METIS on the scene's mesh, written to a partition file.
+fn partition_ahead(scene: &std::path::Path, parts: usize, out: &std::path::Path) -> Result<String, String> {
+    if parts == 0 {
+        return Err("--parts must be at least 1".into());
+    }
+    let s = cfrd::scene::Scene::load(scene).map_err(|e| e.to_string())?;
+    let cells = cfrd::solver::statics::mesh_cells(&s.mesh);
+    let n = s.mesh.num_nodes();
+    let part = partition::partition_elements(&cells, n, parts).map_err(|e| e.to_string())?;
+    let p = partition::Partition::new(&cells, n, parts, part.clone());
+    let counts: Vec<usize> = (0..parts).map(|r| p.owned_cells(r).len()).collect();
+    partition::PartitionFile::new(&cells, n, parts, part).write(out).map_err(|e| e.to_string())?;
+    Ok(format!(
+        "{}: {} elements in {parts} parts {:?}, {} elements on part boundaries",
+        out.display(),
+        cells.len(),
+        counts,
+        p.boundary_cells(&cells)
+    ))
 }
 
 /// Initializes MPI, installs the abort-on-panic hook, runs `f`, and maps failures to exit codes

@@ -63,7 +63,7 @@ pub fn partition_scene(world: &SimpleCommunicator, scene: &Scene) -> Result<Part
     let nparts = world.size() as usize;
     let local = if world.rank() == 0 {
         match &scene.file.partition {
-            Some(p) => PartitionFile::read(p, &cells, n_nodes, nparts).map_err(|e| e.to_string()),
+            Some(p) => PartitionFile::read(&scene.resolve(p), &cells, n_nodes, nparts).map_err(|e| e.to_string()),
             None => partition_elements(&cells, n_nodes, nparts).map_err(|e| e.to_string()),
         }
     } else {

@@ -24,6 +24,19 @@ pub struct Scene {
     pub fixed: Vec<(u32, u8, f64)>,
     /// FNV-1a hash of the scene text (checkpoints refuse another scene).
     pub hash: String,
+    /// Directory that relative paths of the scene (mesh, partition) are taken from.
+    pub base: PathBuf,
+}
+
+impl Scene {
+    /// A path of the scene resolved against the scene file's directory.
+    pub fn resolve(&self, p: &Path) -> PathBuf {
+        if p.is_absolute() {
+            p.to_path_buf()
+        } else {
+            self.base.join(p)
+        }
+    }
 }
 
 impl Scene {
@@ -160,6 +173,7 @@ impl Scene {
             terms,
             fixed,
             hash: fnv1a(text.as_bytes()),
+            base: base.to_path_buf(),
         })
     }
 }
