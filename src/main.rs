@@ -13,6 +13,20 @@ struct Cli {
 }
 
 #[derive(Subcommand, Debug)]
+enum Bench {
+    /// Static solve of a seed-like dam mesh of about `--dofs` DOFs: prints one table row
+    /// (ranks, DOFs, assembly and solve time, KSP iterations, peak memory, DOFs per second).
+    Solver {
+        /// Target number of DOFs.
+        #[arg(long, default_value_t = 100_000)]
+        dofs: usize,
+        /// Output directory of the run.
+        #[arg(short = 'o', long = "out", default_value = "out/bench")]
+        out: PathBuf,
+    },
+}
+
+#[derive(Subcommand, Debug)]
 enum Command {
     /// Run a scene (the embedded default scene when none is given). Run it under `mpirun -n N`.
     /// Single-dash words such as `-ksp_type gmres` are PETSc options; they override the scene's.
@@ -33,6 +47,9 @@ enum Command {
     },
     /// Print the JSON Schema of the scene format.
     Schema,
+    /// Benchmarks (run `cfrd bench solver` under `mpirun -n N`).
+    #[command(subcommand)]
+    Bench(Bench),
     /// Partition a scene's mesh ahead of time with METIS for a given rank count; the scene then
     /// names the file in `partition:`.
     Partition {
@@ -112,6 +129,25 @@ fn main() -> ExitCode {
                 ExitCode::from(2)
             }
         },
+        Command::Bench(Bench::Solver { dofs, out }) => with_mpi(|world| {
+            let opts = cfrd::run::RunOptions { scene: None, out_dir: Some(out), petsc_options: petsc, verbose: false };
+            let s = cfrd::run::bench_solver(world, dofs, &opts)?;
+            if mpi::topology::Communicator::rank(world) == 0 {
+                let work = s.phase_seconds.assembly + s.phase_seconds.solve;
+                println!(
+                    "| {} | {} | {} | {:.2} | {:.2} | {} | {:.0} | {:.0} |",
+                    s.ranks,
+                    s.dofs,
+                    s.elements,
+                    s.phase_seconds.assembly,
+                    s.phase_seconds.solve,
+                    s.ksp_iterations,
+                    s.peak_memory_bytes as f64 / 1048576.0,
+                    s.dofs as f64 / work
+                );
+            }
+            Ok(())
+        }),
         Command::Check { scene } => with_mpi(|world| {
             let s = cfrd::run::load_scene(world, Some(&scene))?;
             if mpi::topology::Communicator::rank(world) == 0 {

@@ -77,16 +77,28 @@ pub fn partition_scene(world: &SimpleCommunicator, scene: &Scene) -> Result<Part
 /// Runs a static analysis and writes `results.h5`, `results.xdmf` and `summary.json` into the
 /// output directory. Returns the run summary on success.
 pub fn run(world: &SimpleCommunicator, opts: &RunOptions) -> Result<RunSummary, RunFailure> {
+    let t_all = Instant::now();
+    let mut timer = PhaseTimer::new();
+    timer.start(Phase::Read);
+    let scene = load_scene(world, opts.scene.as_deref())?;
+    run_scene(world, &scene, opts, timer, t_all)
+}
+
+/// Runs an already loaded scene (used by `cfrd run` and the benchmarks); `timer` has the read
+/// phase running, `t_all` is the start of the run.
+pub fn run_scene(
+    world: &SimpleCommunicator,
+    scene: &Scene,
+    opts: &RunOptions,
+    mut timer: PhaseTimer,
+    t_all: Instant,
+) -> Result<RunSummary, RunFailure> {
     let rank = world.rank();
     let say = |s: &str| {
         if rank == 0 && opts.verbose {
             eprintln!("{s}");
         }
     };
-    let t_all = Instant::now();
-    let mut timer = PhaseTimer::new();
-    timer.start(Phase::Read);
-    let scene = load_scene(world, opts.scene.as_deref())?;
     say(&format!(
         "scene '{}': {} nodes, {} elements, {} DOFs, {} ranks",
         scene.file.name,
@@ -103,7 +115,7 @@ pub fn run(world: &SimpleCommunicator, opts: &RunOptions) -> Result<RunSummary, 
         .map_err(|m| input(format!("output directory {}: {m}", out_dir.display())))?;
 
     timer.start(Phase::Partition);
-    let partition = partition_scene(world, &scene)?;
+    let partition = partition_scene(world, scene)?;
     let cells = mesh_cells(&scene.mesh);
     let disc = Discretization::new(&cells, scene.mesh.num_nodes(), partition, rank as usize);
 
@@ -116,7 +128,7 @@ pub fn run(world: &SimpleCommunicator, opts: &RunOptions) -> Result<RunSummary, 
         .insert_options(&scene.file.solver.petsc_options)
         .and_then(|_| petsc.insert_options(&opts.petsc_options.join(" ")));
     any_error(world, opt_result).map_err(|m| input(format!("PETSc options: {m}")))?;
-    let setup = StaticProblem::new(&petsc, &scene, cells, disc);
+    let setup = StaticProblem::new(&petsc, scene, cells, disc);
     let mut problem = any_error(world, setup).map_err(|m| input(format!("setting up the solver: {m}")))?;
     timer.stop();
 
@@ -146,7 +158,7 @@ pub fn run(world: &SimpleCommunicator, opts: &RunOptions) -> Result<RunSummary, 
         message: m,
     })?;
     let h5 = out_dir.join("results.h5");
-    let written = write_results(world, &scene, &results, &h5);
+    let written = write_results(world, scene, &results, &h5);
     any_error(world, written).map_err(|m| RunFailure {
         code: EXIT_SOLVER,
         message: format!("writing results: {m}"),
@@ -208,4 +220,33 @@ fn write_results(
     let strain: Vec<f64> = res.strain.iter().flat_map(strain_output_components).collect();
     file.write_element_field("strain", "-", 6, &strain)?;
     file.close()
+}
+
+/// The solver benchmark scene: the seed-like dam section (H = 171 m, slopes 1:1.4, crest 10 m)
+/// extruded over 355 m, sized for about `target_dofs` DOFs, linear elastic under gravity and a
+/// reservoir at 159 m. Used by `cfrd bench solver`.
+pub fn bench_scene(target_dofs: usize) -> Result<Scene, RunFailure> {
+    let spec = crate::mesh::generate::DamSpec::seed_like(355.0, [1, 1, 1], 1)
+        .with_target_dofs(target_dofs)
+        .map_err(|e| input(e.to_string()))?;
+    let [nx, ny, nz] = spec.divisions;
+    let text = format!(
+        "name: bench-dam-{target_dofs}\nunits: SI\n\
+         mesh: {{ dam: {{ height: 171.0, crest_width: 10.0, upstream_slope: 1.4, downstream_slope: 1.4, \
+         length: 355.0, divisions: [{nx}, {ny}, {nz}], layers: 1 }} }}\n\
+         materials: {{ rockfill: {{ model: elastic, young: 8.0e8, poisson: 0.3, density: 2150.0 }} }}\n\
+         blocks: {{ layer_1: {{ material: rockfill }} }}\n\
+         boundary: [ {{ set: base, fix: [x, y, z] }}, {{ set: ymin, fix: [y] }}, {{ set: ymax, fix: [y] }} ]\n\
+         loads: {{ gravity: {{ g: [0.0, 0.0, -9.81] }}, hydrostatic: [ {{ faces: upstream, level: 159.0 }} ] }}\n"
+    );
+    Scene::from_str(&text, "<benchmark scene>", Path::new(".")).map_err(|e| input(e.to_string()))
+}
+
+/// `cfrd bench solver`: runs [`bench_scene`] and returns its summary.
+pub fn bench_solver(world: &SimpleCommunicator, target_dofs: usize, opts: &RunOptions) -> Result<RunSummary, RunFailure> {
+    let t_all = Instant::now();
+    let mut timer = PhaseTimer::new();
+    timer.start(Phase::Read);
+    let scene = any_error(world, bench_scene(target_dofs).map_err(|e| e.message)).map_err(input)?;
+    run_scene(world, &scene, opts, timer, t_all)
 }
