@@ -13,7 +13,7 @@ read -r -a sizes <<< "${sizes[*]}"
 out=scripts/bench_solver.md
 tmp=$(mktemp)
 {
-  echo "| ranks | DOFs | elements | assembly (s) | solve (s) | KSP iterations | peak memory per rank (MiB) | DOFs/s (assembly + solve) |"
+  echo "| ranks | DOFs | elements | assembly (s) | solve (s) | KSP iterations | peak memory, max over ranks (MiB) | DOFs/s (assembly + solve) |"
   echo "|---|---|---|---|---|---|---|---|"
 } > "$tmp"
 for n in "${sizes[@]}"; do

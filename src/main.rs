@@ -130,7 +130,12 @@ fn main() -> ExitCode {
             }
         },
         Command::Bench(Bench::Solver { dofs, out }) => with_mpi(|world| {
-            let opts = cfrd::run::RunOptions { scene: None, out_dir: Some(out), petsc_options: petsc, verbose: false };
+            let opts = cfrd::run::RunOptions {
+                scene: None,
+                out_dir: Some(out),
+                petsc_options: petsc,
+                verbose: false,
+            };
             let s = cfrd::run::bench_solver(world, dofs, &opts)?;
             if mpi::topology::Communicator::rank(world) == 0 {
                 let work = s.phase_seconds.assembly + s.phase_seconds.solve;
@@ -187,7 +192,9 @@ fn partition_ahead(scene: &std::path::Path, parts: usize, out: &std::path::Path)
     let part = partition::partition_elements(&cells, n, parts).map_err(|e| e.to_string())?;
     let p = partition::Partition::new(&cells, n, parts, part.clone());
     let counts: Vec<usize> = (0..parts).map(|r| p.owned_cells(r).len()).collect();
-    partition::PartitionFile::new(&cells, n, parts, part).write(out).map_err(|e| e.to_string())?;
+    partition::PartitionFile::new(&cells, n, parts, part)
+        .write(out)
+        .map_err(|e| e.to_string())?;
     Ok(format!(
         "{}: {} elements in {parts} parts {:?}, {} elements on part boundaries",
         out.display(),

@@ -16,7 +16,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 /// The embedded default scene.
-pub const DEFAULT_SCENE: &str = include_str!("scene/default.yaml");
+pub const DEFAULT_SCENE: &str = include_str!("../inputs/scenes/default_dam.yaml");
 
 /// A failed run: message and process exit code.
 #[derive(Debug)]
@@ -63,7 +63,9 @@ pub fn partition_scene(world: &SimpleCommunicator, scene: &Scene) -> Result<Part
     let nparts = world.size() as usize;
     let local = if world.rank() == 0 {
         match &scene.file.partition {
-            Some(p) => PartitionFile::read(&scene.resolve(p), &cells, n_nodes, nparts).map_err(|e| e.to_string()),
+            Some(p) => {
+                PartitionFile::read(&scene.resolve(p), &cells, n_nodes, nparts).map_err(|e| e.to_string())
+            }
             None => partition_elements(&cells, n_nodes, nparts).map_err(|e| e.to_string()),
         }
     } else {
@@ -243,7 +245,11 @@ pub fn bench_scene(target_dofs: usize) -> Result<Scene, RunFailure> {
 }
 
 /// `cfrd bench solver`: runs [`bench_scene`] and returns its summary.
-pub fn bench_solver(world: &SimpleCommunicator, target_dofs: usize, opts: &RunOptions) -> Result<RunSummary, RunFailure> {
+pub fn bench_solver(
+    world: &SimpleCommunicator,
+    target_dofs: usize,
+    opts: &RunOptions,
+) -> Result<RunSummary, RunFailure> {
     let t_all = Instant::now();
     let mut timer = PhaseTimer::new();
     timer.start(Phase::Read);

@@ -29,8 +29,10 @@ fn msh(nodes: [u32; 8]) -> String {
     )
 }
 
-/// (case, scene text, extra files, text the message must contain)
-fn cases() -> Vec<(&'static str, String, Vec<(&'static str, String)>, &'static str)> {
+/// One bad-input case: name, scene text, extra files (name, body), text the message must contain.
+type Case = (&'static str, String, Vec<(&'static str, String)>, &'static str);
+
+fn cases() -> Vec<Case> {
     let gmsh_scene = |file: &str, block: &str| {
         format!(
             "name: g\nunits: SI\nmesh: {{ file: {file} }}\nmaterials:\n  soil: {{ model: elastic, young: 5.0e7, poisson: 0.3, density: 2000.0 }}\n\
@@ -172,4 +174,19 @@ fn check_accepts_a_good_scene_and_schema_is_json() {
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("schema is JSON");
     assert!(v["properties"]["materials"].is_object(), "schema lacks materials");
     assert!(v["required"].as_array().unwrap().iter().any(|r| r == "mesh"));
+}
+
+#[test]
+fn every_example_scene_passes_check() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("inputs/scenes");
+    let mut n = 0;
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "yaml") {
+            let o = cfrd(&dir, &["check", path.to_str().unwrap()]);
+            assert!(o.status.success(), "{}: {}", path.display(), text(&o));
+            n += 1;
+        }
+    }
+    assert!(n >= 4, "expected the example scenes in {}", dir.display());
 }

@@ -120,7 +120,7 @@ impl Scene {
                 fixed.extend(nodes.iter().map(|&n| (n, axis.index() as u8, v)));
             }
         }
-        fixed.sort_by(|a, b| (a.0, a.1).cmp(&(b.0, b.1)));
+        fixed.sort_by_key(|a| (a.0, a.1));
         for w in fixed.windows(2) {
             if (w[0].0, w[0].1) == (w[1].0, w[1].1) && w[0].2 != w[1].2 {
                 return Err(inv(
