@@ -134,9 +134,26 @@ pub fn run_scene(
     let mut problem = any_error(world, setup).map_err(|m| input(format!("setting up the solver: {m}")))?;
     timer.stop();
 
-    say("solving static equilibrium ...");
+    let sopts = &scene.file.solver;
+    say(&format!(
+        "solving static equilibrium in {} load step(s) ...",
+        sopts.load_steps
+    ));
     let mut report = SolveReport::default();
-    let solved = problem.solve_step(1.0, &mut report);
+    let bar = progress_bar(rank == 0 && opts.verbose, sopts.load_steps as u64);
+    let solved = problem.solve_load_steps(
+        sopts.load_steps,
+        sopts.max_cutbacks,
+        &mut report,
+        |lambda, rep| {
+            bar.set_position((lambda * sopts.load_steps as f64).round() as u64);
+            bar.set_message(format!(
+                "λ = {lambda:.3}, Newton {}, cut-backs {}",
+                rep.newton_iterations, rep.cutbacks
+            ));
+        },
+    );
+    bar.finish_and_clear();
     any_error(world, solved).map_err(|m| RunFailure {
         code: EXIT_SOLVER,
         message: m,
@@ -150,8 +167,8 @@ pub fn run_scene(
         std::time::Duration::from_secs_f64(report.solve_seconds),
     );
     say(&format!(
-        "converged: {} Newton iteration(s), KSP iterations {:?}",
-        report.newton_iterations, report.ksp_iterations
+        "converged: {} step(s), {} Newton iteration(s), {} cut-back(s), KSP iterations {:?}",
+        report.steps, report.newton_iterations, report.cutbacks, report.ksp_iterations
     ));
 
     timer.start(Phase::Output);
@@ -177,7 +194,9 @@ pub fn run_scene(
     summary.total_seconds = crate::parallel::max_f64(world, t_all.elapsed().as_secs_f64());
     summary.ksp_iterations = report.ksp_iterations.iter().map(|&k| k as u64).sum();
     summary.newton_iterations = report.newton_iterations as u64;
-    summary.steps = 1;
+    summary.steps = report.steps as u64;
+    summary.cutbacks = report.cutbacks as u64;
+    summary.newton_per_step = report.newton_per_step.clone();
     summary.gather_peak_memory(world);
     if rank == 0 {
         summary
@@ -255,4 +274,18 @@ pub fn bench_solver(
     timer.start(Phase::Read);
     let scene = any_error(world, bench_scene(target_dofs).map_err(|e| e.message)).map_err(input)?;
     run_scene(world, &scene, opts, timer, t_all)
+}
+
+/// A progress bar on rank 0's terminal (hidden elsewhere and when stderr is not a terminal).
+fn progress_bar(show: bool, len: u64) -> indicatif::ProgressBar {
+    if !show {
+        return indicatif::ProgressBar::hidden();
+    }
+    let bar = indicatif::ProgressBar::new(len);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{elapsed_precise} [{bar:30}] step {pos}/{len} {msg}")
+            .expect("valid template")
+            .progress_chars("=> "),
+    );
+    bar
 }

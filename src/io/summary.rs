@@ -200,6 +200,12 @@ pub struct RunSummary {
     pub newton_iterations: u64,
     /// Number of load or time steps completed.
     pub steps: u64,
+    /// Step cut-backs (failed steps retried with a smaller increment).
+    #[serde(default)]
+    pub cutbacks: u64,
+    /// Newton iterations of each completed step.
+    #[serde(default)]
+    pub newton_per_step: Vec<u32>,
     /// Peak resident memory (bytes), maximum over ranks.
     pub peak_memory_bytes: u64,
     /// Peak resident memory (bytes) of each rank.

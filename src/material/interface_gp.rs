@@ -193,9 +193,9 @@ pub enum TangentChoice {
 /// Branch and strain increment of the last material substep of an update.
 type LastSubstep = Option<(SubstepBranch, Vector3<f64>)>;
 
-/// Parameters of the GP interface (spec §2.1, §7). SI units; `Default` is seed Table 2 in SI.
+/// Parameters of the GP interface (spec §2.1, §7). SI units; `Default` is seed Table 2 in SI; omitted keys take it.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields)]
+#[serde(deny_unknown_fields, default)]
 pub struct GpInterfaceParams {
     /// Shear elastic constant D_s0 (Pa), eq. (I3). Seed: 1000 kPa.
     #[serde(rename = "Ds0")]

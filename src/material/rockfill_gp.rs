@@ -88,9 +88,9 @@ fn default_true() -> bool {
 }
 
 /// Parameters of the rockfill GP model (spec §1.1 and §7). Keys as in the spec's §7 table;
-/// `pa`, `pmin`, `p_cutoff` are in **Pa** (SI input). [`Default`] is seed Table 1.
+/// `pa`, `pmin`, `p_cutoff` are in **Pa** (SI input). [`Default`] is seed Table 1; omitted keys take it.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields)]
+#[serde(deny_unknown_fields, default)]
 pub struct RockfillGpParams {
     /// Shear-modulus number G0 (–), (R2). Table 1: 1475.
     #[serde(rename = "G0")]

@@ -228,6 +228,12 @@ pub struct SolverSpec {
     /// Maximum Newton iterations per step.
     #[serde(default = "newton_max")]
     pub newton_max_iterations: u32,
+    /// Number of equal load steps from no load to the full loads (load factor λ = k/n).
+    #[serde(default = "one")]
+    pub load_steps: u32,
+    /// Consecutive cut-backs (halving the load step) allowed before a step is declared failed.
+    #[serde(default = "max_cutbacks")]
+    pub max_cutbacks: u32,
     /// PETSc options, e.g. `-ksp_type gmres -pc_type hypre`; command-line options override them.
     #[serde(default)]
     pub petsc_options: String,
@@ -245,6 +251,9 @@ fn newton_tol() -> f64 {
 fn newton_max() -> u32 {
     25
 }
+fn max_cutbacks() -> u32 {
+    8
+}
 
 impl Default for SolverSpec {
     fn default() -> Self {
@@ -253,6 +262,8 @@ impl Default for SolverSpec {
             max_iterations: max_it(),
             newton_tol: newton_tol(),
             newton_max_iterations: newton_max(),
+            load_steps: 1,
+            max_cutbacks: max_cutbacks(),
             petsc_options: String::new(),
         }
     }

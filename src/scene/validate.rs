@@ -253,6 +253,9 @@ fn check_values(f: &SceneFile, inv: &dyn Fn(&str, String) -> SceneError) -> Resu
     if !(s.rtol > 0.0 && s.rtol < 1.0) {
         return Err(inv("solver.rtol", format!("must lie in (0, 1), got {}", s.rtol)));
     }
+    if s.load_steps == 0 {
+        return Err(inv("solver.load_steps", "must be at least 1".into()));
+    }
     if !(s.newton_tol > 0.0 && s.newton_tol < 1.0) {
         return Err(inv(
             "solver.newton_tol",

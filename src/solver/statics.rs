@@ -12,7 +12,7 @@ use super::solid::{SolidBlock, Vector24};
 use crate::element::hex8::{face_pressure_load, gravity_load, Hex8Geometry};
 use crate::linalg::petsc::{Gather, Ksp, Matrix, Petsc, SolveStats, Vector};
 use crate::mesh::Mesh;
-use crate::parallel::{sum_f64, sum_u64};
+use crate::parallel::{any_error, sum_f64, sum_u64};
 use crate::scene::{Scene, Term};
 use crate::tensor::{Strain6, Stress6};
 use mpi::topology::SimpleCommunicator;
@@ -55,6 +55,37 @@ pub enum SolveError {
         /// Last relative residual.
         residual: f64,
     },
+    /// A material update failed on some rank (message of the lowest failing rank).
+    #[error("{0}")]
+    Collective(String),
+    /// A load step could not be completed even after cutting it back.
+    #[error(
+        "load step from λ = {from:.4} to λ = {to:.4} failed after {cutbacks} cut-back(s); \
+         the last converged state is λ = {from:.4}: {source}"
+    )]
+    Step {
+        /// Last converged load factor.
+        from: f64,
+        /// Load factor of the failed attempt.
+        to: f64,
+        /// Cut-backs tried.
+        cutbacks: u32,
+        /// Why the last attempt failed.
+        source: Box<SolveError>,
+    },
+}
+
+impl SolveError {
+    /// Whether a smaller step may succeed (material failure, Newton or linear divergence).
+    pub fn recoverable(&self) -> bool {
+        matches!(
+            self,
+            SolveError::Material { .. }
+                | SolveError::Collective(_)
+                | SolveError::Newton { .. }
+                | SolveError::Linear { .. }
+        )
+    }
 }
 
 /// Counters and timings of a solve.
@@ -70,6 +101,12 @@ pub struct SolveReport {
     pub assembly_seconds: f64,
     /// Wall time in linear solves (s).
     pub solve_seconds: f64,
+    /// Converged load steps.
+    pub steps: u32,
+    /// Step cut-backs (a failed step retried with half the increment).
+    pub cutbacks: u32,
+    /// Newton iterations of each converged step.
+    pub newton_per_step: Vec<u32>,
 }
 
 /// Rank-local results in input order of the owned nodes and elements.
@@ -290,12 +327,18 @@ impl<'a> StaticProblem<'a> {
         let mut rows = [0i32; 24];
         let mut kt = [0.0f64; 576];
         let (mut diag_sum, mut diag_n) = (0.0f64, 0u64);
+        // the element loop stops at the first local failure, but the collective assembly calls
+        // below run on every rank whatever happened here (no rank may skip a collective)
+        let mut local = Ok(());
         for (i, &e) in self.disc.owned_elements.iter().enumerate() {
             let e = e as usize;
             let x = mesh.element_coords(e);
-            let geo = Hex8Geometry::new(&x).map_err(|_| SolveError::Geometry {
-                element: mesh.elements[e].id,
-            })?;
+            let Ok(geo) = Hex8Geometry::new(&x) else {
+                local = Err(SolveError::Geometry {
+                    element: mesh.elements[e].id,
+                });
+                break;
+            };
             let loc = &self.disc.element_local[i];
             let mut d_u = Vector24::zeros();
             for a in 0..8 {
@@ -306,12 +349,16 @@ impl<'a> StaticProblem<'a> {
                 }
             }
             let (b, be) = self.elem_block[i];
-            let resp = self.blocks[b]
-                .evaluate(be, &geo, &d_u, want_k)
-                .map_err(|m| SolveError::Material {
-                    element: mesh.elements[e].id,
-                    reason: m.reason,
-                })?;
+            let resp = match self.blocks[b].evaluate(be, &geo, &d_u, want_k) {
+                Ok(resp) => resp,
+                Err(m) => {
+                    local = Err(SolveError::Material {
+                        element: mesh.elements[e].id,
+                        reason: m.reason,
+                    });
+                    break;
+                }
+            };
             f_int.set_values(&rows, resp.f_int.as_slice(), true)?;
             if let Some(ke) = resp.k {
                 diag_sum += ke.diagonal().iter().map(|v| v.abs()).sum::<f64>();
@@ -328,12 +375,82 @@ impl<'a> StaticProblem<'a> {
             let (s, n) = (sum_f64(&world, diag_sum), sum_u64(&world, diag_n));
             self.dirichlet_diag = if n > 0 && s > 0.0 { s / n as f64 } else { 1.0 };
         }
+        local
+    }
+
+    /// Applies the loads in `n_steps` equal increments of the load factor λ from the committed
+    /// state to 1, cutting a failed increment in half (at most `max_cutbacks` times in a row) and
+    /// growing it back after two successes. `on_step(λ)` is called after every converged step.
+    /// Every decision is collective, so all ranks take the same path.
+    pub fn solve_load_steps(
+        &mut self,
+        n_steps: u32,
+        max_cutbacks: u32,
+        report: &mut SolveReport,
+        mut on_step: impl FnMut(f64, &SolveReport),
+    ) -> Result<(), SolveError> {
+        let base = 1.0 / n_steps.max(1) as f64;
+        let (mut lambda, mut d_lambda, mut cuts, mut streak) = (0.0f64, base, 0u32, 0u32);
+        while lambda < 1.0 - 1e-12 {
+            let next = if lambda + d_lambda > 1.0 - 1e-12 {
+                1.0
+            } else {
+                lambda + d_lambda
+            };
+            let before = report.newton_iterations;
+            match self.solve_step(next, report) {
+                Ok(()) => {
+                    lambda = next;
+                    report.steps += 1;
+                    report.newton_per_step.push(report.newton_iterations - before);
+                    cuts = 0;
+                    streak += 1;
+                    if streak >= 2 && d_lambda < base {
+                        d_lambda = (2.0 * d_lambda).min(base);
+                        streak = 0;
+                    }
+                    on_step(lambda, report);
+                }
+                Err(e) if e.recoverable() && cuts < max_cutbacks => {
+                    cuts += 1;
+                    report.cutbacks += 1;
+                    d_lambda *= 0.5;
+                    streak = 0;
+                }
+                Err(e) => {
+                    return Err(SolveError::Step {
+                        from: lambda,
+                        to: next,
+                        cutbacks: cuts,
+                        source: Box::new(e),
+                    });
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Returns to the committed state (after a failed step).
+    fn revert(&mut self) -> Result<(), SolveError> {
+        for b in &mut self.blocks {
+            b.revert();
+        }
+        self.u.copy_from(&self.u_committed)?;
         Ok(())
     }
 
     /// Solves one load step to equilibrium at load factor `lambda` (loads and prescribed
-    /// displacements scaled by it) and commits the states.
+    /// displacements scaled by it) and commits the states. On failure the problem is back at
+    /// its committed state.
     pub fn solve_step(&mut self, lambda: f64, report: &mut SolveReport) -> Result<(), SolveError> {
+        let r = self.newton(lambda, report);
+        if r.is_err() {
+            self.revert()?;
+        }
+        r
+    }
+
+    fn newton(&mut self, lambda: f64, report: &mut SolveReport) -> Result<(), SolveError> {
         let opts = &self.scene.file.solver;
         let mut f_ext = self.u.duplicate()?;
         self.external_force(lambda, &mut f_ext)?;
@@ -343,8 +460,11 @@ impl<'a> StaticProblem<'a> {
         let rows: Vec<i32> = self.fixed.iter().map(|f| f.0).collect();
         for it in 0..=opts.newton_max_iterations {
             let t0 = Instant::now();
-            self.assemble(&mut f_int, true)?;
+            // a material failure on one rank must stop every rank (collective decision)
+            let assembled = self.assemble(&mut f_int, true);
             report.assembly_seconds += t0.elapsed().as_secs_f64();
+            let world = SimpleCommunicator::world();
+            any_error(&world, assembled).map_err(SolveError::Collective)?;
             // r = f_ext − f_int on free DOFs; the reference is max(|f_ext|, |f_int|)
             r.copy_from(&f_ext)?;
             r.axpy(-1.0, &f_int)?;
@@ -370,6 +490,12 @@ impl<'a> StaticProblem<'a> {
             let ref_norm = f_ext.norm2()?.max(f_int.norm2()?).max(1e-300);
             let rel = r_norm / ref_norm;
             report.residuals.push(rel);
+            if !rel.is_finite() {
+                return Err(SolveError::Newton {
+                    iterations: it,
+                    residual: rel,
+                });
+            }
             if it > 0 && rel <= opts.newton_tol {
                 report.newton_iterations += it;
                 for b in &mut self.blocks {
@@ -401,9 +527,6 @@ impl<'a> StaticProblem<'a> {
                     s[l] = v;
                 }
             })?;
-        }
-        for b in &mut self.blocks {
-            b.revert();
         }
         let residual = report.residuals.last().copied().unwrap_or(f64::NAN);
         Err(SolveError::Newton {
