@@ -342,6 +342,8 @@ mod tests {
             ksp_iterations: 40,
             newton_iterations: 6,
             steps: 3,
+            cutbacks: 1,
+            newton_per_step: vec![2, 2, 2],
             peak_memory_bytes: 2048,
             peak_memory_bytes_per_rank: vec![1024, 2048],
         };
