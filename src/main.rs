@@ -157,13 +157,13 @@ fn main() -> ExitCode {
             let s = cfrd::run::load_scene(world, Some(&scene))?;
             if mpi::topology::Communicator::rank(world) == 0 {
                 println!(
-                    "{}: ok ({} nodes, {} elements, {} blocks, {} fixed DOFs, {} load terms)",
+                    "{}: ok ({} nodes, {} elements, {} blocks, {} fixed DOFs, {} stage(s))",
                     scene.display(),
                     s.mesh.num_nodes(),
                     s.mesh.elements.len(),
                     s.mesh.blocks.len(),
                     s.fixed.len(),
-                    s.terms.len()
+                    s.stages.len()
                 );
             }
             Ok(())

@@ -135,29 +135,66 @@ pub fn run_scene(
     timer.stop();
 
     let sopts = &scene.file.solver;
-    say(&format!(
-        "solving static equilibrium in {} load step(s) ...",
-        sopts.load_steps
-    ));
     let mut report = SolveReport::default();
-    let bar = progress_bar(rank == 0 && opts.verbose, sopts.load_steps as u64);
-    let solved = problem.solve_load_steps(
-        sopts.load_steps,
-        sopts.max_cutbacks,
-        &mut report,
-        |lambda, rep| {
-            bar.set_position((lambda * sopts.load_steps as f64).round() as u64);
-            bar.set_message(format!(
-                "λ = {lambda:.3}, Newton {}, cut-backs {}",
-                rep.newton_iterations, rep.cutbacks
-            ));
-        },
-    );
-    bar.finish_and_clear();
-    any_error(world, solved).map_err(|m| RunFailure {
+    timer.start(Phase::Output);
+    let h5 = out_dir.join("results.h5");
+    let created = ResultsFile::create(world, &h5, &scene.file.name).and_then(|mut f| {
+        let d = problem.discretization();
+        f.write_mesh(&OwnedMesh::from_mesh(
+            &scene.mesh,
+            d.owned_nodes.clone(),
+            d.owned_elements.clone(),
+        ))?;
+        Ok(f)
+    });
+    let mut file = any_error(world, created).map_err(|m| RunFailure {
         code: EXIT_SOLVER,
-        message: m,
+        message: format!("writing results: {m}"),
     })?;
+    timer.stop();
+    let n_stages = scene.stages.len();
+    let mut failure = None;
+    for (k, stage) in scene.stages.iter().enumerate() {
+        say(&format!(
+            "stage {}/{n_stages} '{}': {} load step(s)",
+            k + 1,
+            stage.name,
+            stage.load_steps
+        ));
+        let begun = problem.begin_stage(k);
+        if let Err(m) = any_error(world, begun) {
+            failure = Some(m);
+            break;
+        }
+        let bar = progress_bar(rank == 0 && opts.verbose, stage.load_steps as u64);
+        let solved = problem.solve_load_steps(
+            stage.load_steps,
+            sopts.max_cutbacks,
+            &mut report,
+            |lambda, rep| {
+                bar.set_position((lambda * stage.load_steps as f64).round() as u64);
+                bar.set_message(format!(
+                    "λ = {lambda:.3}, Newton {}, cut-backs {}",
+                    rep.newton_iterations, rep.cutbacks
+                ));
+            },
+        );
+        bar.finish_and_clear();
+        if let Err(m) = any_error(world, solved.and_then(|_| problem.end_stage())) {
+            failure = Some(format!("stage '{}': {m}", stage.name));
+            break;
+        }
+        timer.start(Phase::Output);
+        let written = problem
+            .results()
+            .map_err(|e| e.to_string())
+            .and_then(|res| write_step(&mut file, k, &stage.name, &res).map_err(|e| e.to_string()));
+        any_error(world, written).map_err(|m| RunFailure {
+            code: EXIT_SOLVER,
+            message: format!("writing results: {m}"),
+        })?;
+        timer.stop();
+    }
     timer.add(
         Phase::Assembly,
         std::time::Duration::from_secs_f64(report.assembly_seconds),
@@ -166,22 +203,25 @@ pub fn run_scene(
         Phase::Solve,
         std::time::Duration::from_secs_f64(report.solve_seconds),
     );
-    say(&format!(
-        "converged: {} step(s), {} Newton iteration(s), {} cut-back(s), KSP iterations {:?}",
-        report.steps, report.newton_iterations, report.cutbacks, report.ksp_iterations
-    ));
-
+    // the stages completed so far are kept, also when a later stage failed
     timer.start(Phase::Output);
-    let results = any_error(world, problem.results()).map_err(|m| RunFailure {
-        code: EXIT_SOLVER,
-        message: m,
-    })?;
-    let h5 = out_dir.join("results.h5");
-    let written = write_results(world, scene, &results, &h5);
-    any_error(world, written).map_err(|m| RunFailure {
+    any_error(world, file.close()).map_err(|m| RunFailure {
         code: EXIT_SOLVER,
         message: format!("writing results: {m}"),
     })?;
+    if let Some(m) = failure {
+        return Err(RunFailure {
+            code: EXIT_SOLVER,
+            message: format!("{m} (results of the completed stages are in {})", h5.display()),
+        });
+    }
+    say(&format!(
+        "converged: {} step(s), {} Newton iteration(s), {} cut-back(s), {} KSP iterations",
+        report.steps,
+        report.newton_iterations,
+        report.cutbacks,
+        report.ksp_iterations.iter().sum::<u32>()
+    ));
     timer.stop();
     drop(problem);
     drop(petsc);
@@ -215,23 +255,19 @@ pub fn run_scene(
     Ok(summary)
 }
 
-/// Writes mesh and fields of the converged state collectively (input order, any rank count).
-fn write_results(
-    world: &SimpleCommunicator,
-    scene: &Scene,
+/// Writes the fields of the converged state after stage `k` as one step (collective; input
+/// order, any rank count). The step time is the stage number, so ParaView shows the stages in
+/// order.
+fn write_step(
+    file: &mut ResultsFile,
+    k: usize,
+    stage: &str,
     res: &LocalResults,
-    path: &Path,
 ) -> Result<(), crate::io::IoError> {
-    let mut file = ResultsFile::create(world, path, &scene.file.name)?;
-    file.write_mesh(&OwnedMesh::from_mesh(
-        &scene.mesh,
-        res.nodes.clone(),
-        res.elements.clone(),
-    ))?;
     file.begin_step(StepInfo {
-        time: 1.0,
-        stage: "static".into(),
-        label: "equilibrium".into(),
+        time: (k + 1) as f64,
+        stage: stage.into(),
+        label: format!("end of stage {}", k + 1),
     })?;
     let flat3 = |v: &[[f64; 3]]| v.iter().flatten().copied().collect::<Vec<f64>>();
     file.write_node_field("displacement", "m", 3, &flat3(&res.displacement))?;
@@ -239,8 +275,7 @@ fn write_results(
     let stress: Vec<f64> = res.stress.iter().flat_map(|s| s.0.iter().copied()).collect();
     file.write_element_field("stress", "Pa", 6, &stress)?;
     let strain: Vec<f64> = res.strain.iter().flat_map(strain_output_components).collect();
-    file.write_element_field("strain", "-", 6, &strain)?;
-    file.close()
+    file.write_element_field("strain", "-", 6, &strain)
 }
 
 /// The solver benchmark scene: the seed-like dam section (H = 171 m, slopes 1:1.4, crest 10 m)

@@ -25,6 +25,7 @@ fn solve(petsc: &Petsc, scene: &Scene) -> LocalResults {
     let disc = Discretization::new(&cells, n, part, 0);
     let mut problem = StaticProblem::new(petsc, scene, cells, disc).expect("setup");
     let mut report = SolveReport::default();
+    problem.begin_stage(0).expect("stage");
     problem.solve_step(1.0, &mut report).expect("solve");
     problem.results().expect("results")
 }

@@ -13,4 +13,4 @@ pub mod validate;
 pub use error::SceneError;
 pub use schema::SceneFile;
 pub use term::Term;
-pub use validate::Scene;
+pub use validate::{Scene, Stage};

@@ -32,6 +32,11 @@ pub struct SceneFile {
     /// Loads. Each load present adds one physics term; absent loads are not built.
     #[serde(default)]
     pub loads: LoadsSpec,
+    /// Construction and loading stages, in order. Without stages the scene is one stage that
+    /// places every block and applies `loads`. With stages, each stage places its blocks
+    /// (strain-free) and applies `loads` plus its own loads.
+    #[serde(default)]
+    pub stages: Vec<StageSpec>,
     /// Linear and nonlinear solver settings.
     #[serde(default)]
     pub solver: SolverSpec,
@@ -162,6 +167,26 @@ pub struct FixSpec {
     pub value: Vec<f64>,
 }
 
+/// One construction or loading stage.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct StageSpec {
+    /// Stage name (unique; written into the results).
+    pub name: String,
+    /// Blocks placed at the start of the stage. A placed block starts without strain and at
+    /// zero stress (the GP rockfill at its pressure floor); its nodes that were not yet part of
+    /// the model start with zero displacement, so displacements count from placement.
+    #[serde(default)]
+    pub activate: Vec<String>,
+    /// Loads of this stage, on top of the scene's `loads` (at the end of the stage; the force
+    /// goes linearly from the previous stage's to this one's).
+    #[serde(default)]
+    pub loads: LoadsSpec,
+    /// Load steps of this stage (default: `solver.load_steps`).
+    #[serde(default)]
+    pub load_steps: Option<u32>,
+}
+
 /// Loads of the scene.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
@@ -276,6 +301,24 @@ pub struct OutputSpec {
     /// Output directory, relative to the working directory (the command line `-o` overrides it).
     #[serde(default = "out_dir")]
     pub dir: PathBuf,
+    /// Where the reported displacement of a node placed by a construction stage counts from
+    /// (scenes with `stages` only; the solution itself does not depend on it).
+    #[serde(default)]
+    pub placed_nodes: PlacedNodes,
+}
+
+/// Zero of the reported displacement of nodes placed by a construction stage.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum PlacedNodes {
+    /// From the end of the stage that placed them: the surface of a new lift starts level and
+    /// its settlement counts from then (the usual convention of layered-embankment analysis,
+    /// which gives the classical layered settlement s(z) = γ(H − z)z/M of a confined column).
+    #[default]
+    EndOfStage,
+    /// From the start of the stage that placed them (includes the settlement under the lift's
+    /// own weight during its placement).
+    StartOfStage,
 }
 
 fn out_dir() -> PathBuf {
@@ -284,6 +327,9 @@ fn out_dir() -> PathBuf {
 
 impl Default for OutputSpec {
     fn default() -> Self {
-        OutputSpec { dir: out_dir() }
+        OutputSpec {
+            dir: out_dir(),
+            placed_nodes: PlacedNodes::default(),
+        }
     }
 }

@@ -1,7 +1,7 @@
 //! Loading, validating and resolving a scene.
 
 use super::error::SceneError;
-use super::schema::{MeshSource, SceneFile};
+use super::schema::{LoadsSpec, MeshSource, SceneFile};
 use super::term::Term;
 use crate::material::SolidParams;
 use crate::mesh::{generate, Mesh};
@@ -18,8 +18,8 @@ pub struct Scene {
     pub mesh: Mesh,
     /// Material of every mesh block (indexed like `mesh.blocks`).
     pub block_materials: Vec<SolidParams>,
-    /// The physics terms the scene switches on (besides the internal force, always present).
-    pub terms: Vec<Term>,
+    /// The stages, in order (one stage that places every block when the scene has none).
+    pub stages: Vec<Stage>,
     /// Constrained DOFs: (node index, component, prescribed value), sorted and unique.
     pub fixed: Vec<(u32, u8, f64)>,
     /// FNV-1a hash of the scene text (checkpoints refuse another scene).
@@ -134,15 +134,113 @@ impl Scene {
         }
         fixed.dedup_by(|a, b| (a.0, a.1) == (b.0, b.1));
 
-        // terms
-        let mut terms = Vec::new();
-        if let Some(g) = &file.loads.gravity {
+        // stages and their terms
+        let mut stages = Vec::new();
+        if file.stages.is_empty() {
+            stages.push(Stage {
+                name: "static".into(),
+                activate: (0..mesh.blocks.len() as u32).collect(),
+                terms: resolve_loads(&file.loads, None, &mesh, "loads", &inv)?,
+                load_steps: file.solver.load_steps,
+            });
+        } else {
+            let mut placed = vec![None::<usize>; mesh.blocks.len()];
+            for (k, st) in file.stages.iter().enumerate() {
+                if file.stages[..k].iter().any(|o| o.name == st.name) {
+                    return Err(inv(
+                        &format!("stages[{k}].name"),
+                        format!("stage name '{}' is used twice", st.name),
+                    ));
+                }
+                let mut activate = Vec::new();
+                for (i, b) in st.activate.iter().enumerate() {
+                    let path = format!("stages[{k}].activate[{i}]");
+                    let Some(bi) = mesh.block_index(b) else {
+                        return Err(inv(&path, format!("the mesh has no block '{b}'")));
+                    };
+                    if let Some(first) = placed[bi as usize] {
+                        return Err(inv(
+                            &path,
+                            format!("block '{b}' is already placed in stage {first}"),
+                        ));
+                    }
+                    placed[bi as usize] = Some(k);
+                    activate.push(bi);
+                }
+                if st.load_steps == Some(0) {
+                    return Err(inv(
+                        &format!("stages[{k}].load_steps"),
+                        "must be at least 1".into(),
+                    ));
+                }
+                stages.push(Stage {
+                    name: st.name.clone(),
+                    activate,
+                    terms: resolve_loads(
+                        &file.loads,
+                        Some(&st.loads),
+                        &mesh,
+                        &format!("stages[{k}].loads"),
+                        &inv,
+                    )?,
+                    load_steps: st.load_steps.unwrap_or(file.solver.load_steps),
+                });
+            }
+        }
+
+        Ok(Scene {
+            file,
+            source: source.to_string(),
+            mesh,
+            block_materials,
+            stages,
+            fixed,
+            hash: fnv1a(text.as_bytes()),
+            base: base.to_path_buf(),
+        })
+    }
+}
+
+/// One resolved stage: blocks placed at its start, the loads at its end, and its load steps.
+///
+/// Within a stage the external force goes linearly from the force at the end of the previous
+/// stage to the force of this stage's terms on every active element (load factor λ ∈ (0, 1]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Stage {
+    /// Stage name.
+    pub name: String,
+    /// Block indices placed (activated, strain-free) at the start of the stage.
+    pub activate: Vec<u32>,
+    /// The physics terms at the end of the stage (besides the internal force, always present).
+    pub terms: Vec<Term>,
+    /// Number of equal load steps.
+    pub load_steps: u32,
+}
+
+/// The terms of the scene-wide loads plus a stage's own loads; face sets are checked.
+fn resolve_loads(
+    base: &LoadsSpec,
+    stage: Option<&LoadsSpec>,
+    mesh: &Mesh,
+    path: &str,
+    inv: &dyn Fn(&str, String) -> SceneError,
+) -> Result<Vec<Term>, SceneError> {
+    let mut terms = Vec::new();
+    for (which, loads) in [(String::from("loads"), Some(base)), (path.to_string(), stage)] {
+        let Some(loads) = loads else { continue };
+        if let Some(g) = &loads.gravity {
+            if terms.iter().any(|t| matches!(t, Term::Gravity { .. })) {
+                return Err(inv(
+                    &format!("{which}.gravity"),
+                    "gravity is already given in the scene's loads".into(),
+                ));
+            }
             terms.push(Term::Gravity { g: g.g });
         }
-        for (i, p) in file.loads.pressure.iter().enumerate() {
+        for (i, p) in loads.pressure.iter().enumerate() {
             if !mesh.face_sets.contains_key(&p.faces) {
                 return Err(inv(
-                    &format!("loads.pressure[{i}].faces"),
+                    &format!("{which}.pressure[{i}].faces"),
                     format!("the mesh has no face set '{}'", p.faces),
                 ));
             }
@@ -151,10 +249,10 @@ impl Scene {
                 value: p.value,
             });
         }
-        for (i, h) in file.loads.hydrostatic.iter().enumerate() {
+        for (i, h) in loads.hydrostatic.iter().enumerate() {
             if !mesh.face_sets.contains_key(&h.faces) {
                 return Err(inv(
-                    &format!("loads.hydrostatic[{i}].faces"),
+                    &format!("{which}.hydrostatic[{i}].faces"),
                     format!("the mesh has no face set '{}'", h.faces),
                 ));
             }
@@ -164,18 +262,8 @@ impl Scene {
                 unit_weight: h.unit_weight,
             });
         }
-
-        Ok(Scene {
-            file,
-            source: source.to_string(),
-            mesh,
-            block_materials,
-            terms,
-            fixed,
-            hash: fnv1a(text.as_bytes()),
-            base: base.to_path_buf(),
-        })
     }
+    Ok(terms)
 }
 
 /// Parses scene text with the YAML path of any error.

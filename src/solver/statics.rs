@@ -13,6 +13,7 @@ use crate::element::hex8::{face_pressure_load, gravity_load, Hex8Geometry};
 use crate::linalg::petsc::{Gather, Ksp, Matrix, Petsc, SolveStats, Vector};
 use crate::mesh::Mesh;
 use crate::parallel::{any_error, sum_f64, sum_u64};
+use crate::scene::schema::PlacedNodes;
 use crate::scene::{Scene, Term};
 use crate::tensor::{Strain6, Stress6};
 use mpi::topology::SimpleCommunicator;
@@ -144,6 +145,25 @@ pub struct StaticProblem<'a> {
     /// Diagonal value put on Dirichlet rows: the mean diagonal of the stiffness (same on every
     /// rank), so the constrained rows do not spoil the multigrid smoothers' scaling.
     dirichlet_diag: f64,
+    /// The scene's displacement conditions on owned DOFs: (global dof, prescribed value).
+    scene_fixed: Vec<(i32, f64)>,
+    /// Values of the fixed DOFs at the start of the stage (same order as `fixed`).
+    fixed_start: Vec<f64>,
+    /// Whether each block is placed (same on every rank).
+    active_block: Vec<bool>,
+    /// Whether each node belongs to a placed element (same on every rank).
+    node_active: Vec<bool>,
+    /// Displacement of each owned element's nodes when it was placed: strains count from there.
+    elem_ref: Vec<Vector24>,
+    /// Per owned node: displacement at the end of the stage that placed it; reported
+    /// displacements count from there (the surface of a new lift starts at zero).
+    node_offset: Vec<[f64; 3]>,
+    /// Per owned node: whether it is part of a placed element already at the start of the stage.
+    node_was_active: Vec<bool>,
+    /// Index of the current stage in `scene.stages`.
+    stage: usize,
+    /// External force at the end of the previous stage.
+    f_prev: Vector,
 }
 
 /// Cells (8 nodes each) of a mesh, for partitioning and indexing.
@@ -187,25 +207,15 @@ impl<'a> StaticProblem<'a> {
                 reason: e.reason,
             })?;
 
-        // fixed DOFs owned here; nodes no element touches are fixed too
-        let mut touched = vec![false; n_nodes];
-        for &n in &cells.cell_nodes {
-            touched[n as usize] = true;
-        }
+        // the scene's displacement conditions on owned DOFs; nodes outside the placed elements
+        // are added per stage (begin_stage)
         let me = disc.rank as u32;
-        let mut fixed: Vec<(i32, f64)> = scene
+        let scene_fixed: Vec<(i32, f64)> = scene
             .fixed
             .iter()
             .filter(|(n, _, _)| disc.partition.node_owner[*n as usize] == me)
             .map(|&(n, c, v)| (disc.dof(n, c as usize), v))
             .collect();
-        for &n in &disc.owned_nodes {
-            if !touched[n as usize] {
-                fixed.extend((0..3).map(|c| (disc.dof(n, c), 0.0)));
-            }
-        }
-        fixed.sort_by_key(|f| f.0);
-        fixed.dedup_by_key(|f| f.0);
 
         let (d_nnz, o_nnz) = disc.preallocation(&cells, n_nodes);
         let mut k = Matrix::aij(petsc, disc.n_owned_dofs, 3, &d_nnz, &o_nnz)?;
@@ -217,6 +227,23 @@ impl<'a> StaticProblem<'a> {
             }
         })?;
         k.set_rigid_body_near_null_space(&coords)?;
+        // the full pattern once: every element, placed or not yet, and every diagonal block, so
+        // that placing blocks later never needs a new nonzero (zero entries stay in the pattern)
+        let zeros = vec![0.0f64; 576];
+        let disc_ref = &disc;
+        for &e in &disc.owned_elements {
+            let rows: Vec<i32> = mesh.elements[e as usize]
+                .nodes
+                .iter()
+                .flat_map(|&n| (0..3).map(move |c| disc_ref.dof(n, c)))
+                .collect();
+            k.add_values(&rows, &rows, &zeros)?;
+        }
+        for &n in &disc.owned_nodes {
+            let d = [disc.dof(n, 0), disc.dof(n, 1), disc.dof(n, 2)];
+            k.add_values(&d, &d, &zeros[..9])?;
+        }
+        k.assemble()?;
         let mut u = u;
         u.set_all(0.0)?;
         let mut u_committed = u.duplicate()?;
@@ -227,12 +254,25 @@ impl<'a> StaticProblem<'a> {
         // options (scene and command line) are applied here, so a bad one is an input error;
         // PETSc rebuilds the preconditioner whenever the matrix has changed
         ksp.set_operator(&k)?;
+        let mut f_prev = u.duplicate()?;
+        f_prev.set_all(0.0)?;
+        let n_owned_elements = disc.owned_elements.len();
+        let n_owned_nodes = disc.owned_nodes.len();
         Ok(StaticProblem {
             scene,
             disc,
             blocks,
             elem_block,
-            fixed,
+            fixed: Vec::new(),
+            scene_fixed,
+            fixed_start: Vec::new(),
+            active_block: vec![false; mesh.blocks.len()],
+            node_active: vec![false; n_nodes],
+            elem_ref: vec![Vector24::zeros(); n_owned_elements],
+            node_offset: vec![[0.0; 3]; n_owned_nodes],
+            node_was_active: vec![false; n_owned_nodes],
+            stage: 0,
+            f_prev,
             k,
             u,
             u_committed,
@@ -248,13 +288,82 @@ impl<'a> StaticProblem<'a> {
         &self.disc
     }
 
-    /// Assembles the external force of all load terms at load factor `lambda`.
+    /// Starts stage `k` of the scene: places its blocks (strain-free: their states start from
+    /// the initial state and their strains count from the current displacement) and fixes, at
+    /// their current displacement, the nodes that no placed element touches yet.
+    pub fn begin_stage(&mut self, k: usize) -> Result<(), SolveError> {
+        let mesh = &self.scene.mesh;
+        self.stage = k;
+        for (i, &n) in self.disc.owned_nodes.iter().enumerate() {
+            self.node_was_active[i] = self.node_active[n as usize];
+        }
+        let newly: Vec<bool> = {
+            let mut v = vec![false; mesh.blocks.len()];
+            for &b in &self.scene.stages[k].activate {
+                v[b as usize] = !self.active_block[b as usize];
+                self.active_block[b as usize] = true;
+            }
+            v
+        };
+        for e in &mesh.elements {
+            if self.active_block[e.block as usize] {
+                for &n in &e.nodes {
+                    self.node_active[n as usize] = true;
+                }
+            }
+        }
+        let u_loc: Vec<f64> = self.gather.gather(&self.u)?.read(|s| s.to_vec())?;
+        for (i, &e) in self.disc.owned_elements.iter().enumerate() {
+            if newly[mesh.elements[e as usize].block as usize] {
+                let loc = &self.disc.element_local[i];
+                self.elem_ref[i] = Vector24::from_fn(|r, _| u_loc[3 * loc[r / 3] as usize + r % 3]);
+            }
+        }
+        let lo = self.disc.dof_lo;
+        let u_own: Vec<f64> = self.u.read(|s| s.to_vec())?;
+        let mut fixed = self.scene_fixed.clone();
+        for &n in &self.disc.owned_nodes {
+            if !self.node_active[n as usize] {
+                for c in 0..3 {
+                    let d = self.disc.dof(n, c);
+                    fixed.retain(|f| f.0 != d);
+                    fixed.push((d, u_own[d as usize - lo]));
+                }
+            }
+        }
+        fixed.sort_by_key(|f| f.0);
+        fixed.dedup_by_key(|f| f.0);
+        self.fixed_start = fixed.iter().map(|&(d, _)| u_own[d as usize - lo]).collect();
+        self.fixed = fixed;
+        Ok(())
+    }
+
+    /// Ends the current stage: its loads become the starting loads of the next one, and the
+    /// nodes it placed get their current displacement as the zero of their reported
+    /// displacement (a new lift's surface starts level; settlement counts from its placement).
+    pub fn end_stage(&mut self) -> Result<(), SolveError> {
+        let mut f = self.u.duplicate()?;
+        self.external_force(1.0, &mut f)?;
+        self.f_prev.copy_from(&f)?;
+        let u_own: Vec<f64> = self.u.read(|s| s.to_vec())?;
+        let staged = !self.scene.file.stages.is_empty();
+        let reset = staged && self.scene.file.output.placed_nodes == PlacedNodes::EndOfStage;
+        for (i, &n) in self.disc.owned_nodes.iter().enumerate() {
+            if reset && self.node_active[n as usize] && !self.node_was_active[i] {
+                self.node_offset[i] = [u_own[3 * i], u_own[3 * i + 1], u_own[3 * i + 2]];
+            }
+        }
+        Ok(())
+    }
+
+    /// External force at load factor `lambda` of the current stage:
+    /// f = f_prev + λ (f_stage − f_prev), with f_stage the stage's terms on the placed elements.
     fn external_force(&self, lambda: f64, f: &mut Vector) -> Result<(), SolveError> {
         let mesh = &self.scene.mesh;
         f.set_all(0.0)?;
         let mut owned_elem = vec![false; mesh.elements.len()];
         for &e in &self.disc.owned_elements {
-            owned_elem[e as usize] = true;
+            owned_elem[e as usize] = self.active_block[mesh.elements[e as usize].block as usize];
         }
         let add = |e: usize, fe: &Vector24, f: &mut Vector| -> Result<(), SolveError> {
             let rows: Vec<i32> = mesh.elements[e]
@@ -263,15 +372,17 @@ impl<'a> StaticProblem<'a> {
                 .flat_map(|&n| (0..3).map(move |c| (n, c)))
                 .map(|(n, c)| self.disc.dof(n, c))
                 .collect();
-            let vals: Vec<f64> = fe.iter().map(|v| v * lambda).collect();
-            f.set_values(&rows, &vals, true)?;
+            f.set_values(&rows, fe.as_slice(), true)?;
             Ok(())
         };
-        for term in &self.scene.terms {
+        for term in &self.scene.stages[self.stage].terms {
             match term {
                 Term::Gravity { g } => {
                     for &e in &self.disc.owned_elements {
                         let e = e as usize;
+                        if !owned_elem[e] {
+                            continue;
+                        }
                         let rho = self.scene.block_materials[mesh.elements[e].block as usize].density();
                         add(e, &gravity_load(&mesh.element_coords(e), rho, g), f)?;
                     }
@@ -309,6 +420,9 @@ impl<'a> StaticProblem<'a> {
             }
         }
         f.assemble()?;
+        // f ← λ f_stage + (1 − λ) f_prev
+        f.write(|s| s.iter_mut().for_each(|v| *v *= lambda))?;
+        f.axpy(1.0 - lambda, &self.f_prev)?;
         Ok(())
     }
 
@@ -349,6 +463,9 @@ impl<'a> StaticProblem<'a> {
                 }
             }
             let (b, be) = self.elem_block[i];
+            if !self.active_block[b] {
+                continue;
+            }
             let resp = match self.blocks[b].evaluate(be, &geo, &d_u, want_k) {
                 Ok(resp) => resp,
                 Err(m) => {
@@ -472,7 +589,8 @@ impl<'a> StaticProblem<'a> {
             let target: Vec<(usize, f64)> = self
                 .fixed
                 .iter()
-                .map(|&(d, v)| (d as usize - lo, v * lambda))
+                .zip(&self.fixed_start)
+                .map(|(&(d, v), &v0)| (d as usize - lo, v0 + lambda * (v - v0)))
                 .collect();
             let u_now: Vec<f64> = self.u.read(|s| s.to_vec())?;
             du.set_all(0.0)?;
@@ -556,8 +674,12 @@ impl<'a> StaticProblem<'a> {
             ..Default::default()
         };
         for i in 0..self.disc.owned_nodes.len() {
-            out.displacement
-                .push([u_own[3 * i], u_own[3 * i + 1], u_own[3 * i + 2]]);
+            let o = self.node_offset[i];
+            out.displacement.push([
+                u_own[3 * i] - o[0],
+                u_own[3 * i + 1] - o[1],
+                u_own[3 * i + 2] - o[2],
+            ]);
             out.reaction.push(std::array::from_fn(|c| {
                 if is_fixed[3 * i + c] {
                     reac_all[3 * i + c]
@@ -573,14 +695,19 @@ impl<'a> StaticProblem<'a> {
                 Hex8Geometry::new(&mesh.element_coords(e as usize)).map_err(|_| SolveError::Geometry {
                     element: mesh.elements[e as usize].id,
                 })?;
+            let (b, be) = self.elem_block[i];
+            if !self.active_block[b] {
+                out.strain.push(Strain6::default());
+                out.stress.push(Stress6::default());
+                continue;
+            }
             let loc = &self.disc.element_local[i];
-            let ue = Vector24::from_fn(|k, _| u_loc[3 * loc[k / 3] as usize + k % 3]);
+            let ue = Vector24::from_fn(|k, _| u_loc[3 * loc[k / 3] as usize + k % 3]) - self.elem_ref[i];
             let eps = geo.strain_increments(&ue);
             out.strain.push(
                 eps.iter()
                     .fold(Strain6::default(), |a, s| Strain6(a.0 + s.0 / 8.0)),
             );
-            let (b, be) = self.elem_block[i];
             out.stress.push(self.blocks[b].mean_stress(be));
         }
         Ok(out)
