@@ -2,12 +2,18 @@
 //! figure per file.
 
 use super::csv::write_csv;
-use super::solid::{oedometer_steps, run_solid_path, triaxial_steps, SolidRow};
-use super::spec::{DirectShearTest, JumpPathTest, NormalControlKind, PointTestFile, ScalarPath, TestSpec};
+use super::spec::{
+    DirectShearTest, JumpPathTest, NormalControlKind, PointTestFile, ScalarPath, TestSpec,
+    DEFAULT_CONSOLIDATION_STEPS,
+};
 use crate::material::driver_interface::{
     direct_shear, jump_path, jump_path_increments, InterfaceRow, NormalControl,
 };
-use crate::material::{InterfaceModel, InterfaceVisitor, SolidModel, SolidVisitor};
+use crate::material::driver_solid::{
+    cyclic_triaxial, isotropic_compression, isotropic_path, oedometer_steps, triaxial_strain_steps,
+    triaxial_stress_step, DriverRow, MaterialPointDriver, StepControl,
+};
+use crate::material::{InterfaceModel, InterfaceParams, InterfaceVisitor, SolidModel, SolidVisitor};
 use crate::plot::{Figure, Panel, PlotError, Series};
 use crate::tensor::{Local3, Stress6};
 use std::fmt;
@@ -92,15 +98,45 @@ pub struct Summary {
     pub cases: Vec<CaseSummary>,
     /// The PNG figure written.
     pub png: PathBuf,
+    /// Comparison mode (`interfaces:`): one row per law and normal stress; else empty.
+    pub crosscheck: Vec<CrossCheckRow>,
+    /// Comparison mode: the CSV of [`Summary::crosscheck`] (`<stem>_table.csv`).
+    pub table: Option<PathBuf>,
+}
+
+/// One line of the cross-check table of a comparison-mode file: how one interface law responds
+/// to one direct-shear run.
+///
+/// ```text
+/// peak   = max over the run of τ (resultant shear stress)
+/// u_f    = first shear displacement (along the shear direction) at which τ ≥ f·peak,
+///          linearly interpolated between steps (f = 0.5, 0.95)
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct CrossCheckRow {
+    /// Label of the law (its `model:` tag, numbered when a tag repeats).
+    pub model: String,
+    /// Normal stress of the run (Pa, compression positive; the initial one under CNS).
+    pub sigma_n: f64,
+    /// Peak resultant shear stress (Pa).
+    pub peak_tau: f64,
+    /// Shear displacement at the peak (m).
+    pub u_peak: f64,
+    /// Shear displacement at 50 % of the peak (m).
+    pub u50: f64,
+    /// Shear displacement at 95 % of the peak (m).
+    pub u95: f64,
+    /// Normal jump at the end of the run (m, + opening / dilation).
+    pub delta_n_end: f64,
 }
 
 impl fmt::Display for Summary {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         writeln!(f, "{} ({} / {})", self.title, self.model, self.kind)?;
-        let what = if self.kind == "triaxial" || self.kind == "oedometer" {
-            "q"
-        } else {
+        let what = if self.kind == "direct_shear" || self.kind == "jump_path" {
             "tau"
+        } else {
+            "q"
         };
         for c in &self.cases {
             writeln!(
@@ -112,6 +148,29 @@ impl fmt::Display for Summary {
                 c.last / 1e3,
                 c.csv.display()
             )?;
+        }
+        if !self.crosscheck.is_empty() {
+            writeln!(
+                f,
+                "  {:<16} {:>10} {:>12} {:>11} {:>10} {:>10} {:>13}",
+                "model", "sn (kPa)", "peak (kPa)", "u_pk (mm)", "u50 (mm)", "u95 (mm)", "dn_end (mm)"
+            )?;
+            for r in &self.crosscheck {
+                writeln!(
+                    f,
+                    "  {:<16} {:>10.1} {:>12.2} {:>11.2} {:>10.2} {:>10.2} {:>13.3}",
+                    r.model,
+                    r.sigma_n / 1e3,
+                    r.peak_tau / 1e3,
+                    r.u_peak * 1e3,
+                    r.u50 * 1e3,
+                    r.u95 * 1e3,
+                    r.delta_n_end * 1e3
+                )?;
+            }
+            if let Some(t) = &self.table {
+                writeln!(f, "  table -> {}", t.display())?;
+            }
         }
         write!(f, "  figure -> {}", self.png.display())
     }
@@ -147,25 +206,15 @@ pub fn run_file(path: &Path, out_dir: &Path) -> Result<Summary, PointError> {
         dir: out_dir,
         stem: &stem,
     };
+    if let (Some(laws), TestSpec::DirectShear(t)) = (&spec.interfaces, &spec.test) {
+        return run_crosscheck(&out, &title, laws, t);
+    }
     let (model, cases, figure) = match (&spec.test, &spec.interface, &spec.solid) {
         (TestSpec::DirectShear(t), Some(p), _) => {
-            let dir = t.direction_deg.to_radians();
-            let (c, s) = (dir.cos(), dir.sin());
-            let inc: Vec<[f64; 2]> = t.path.increments().iter().map(|u| [u * c, u * s]).collect();
-            let mut runs = Vec::new();
-            for &sigma_n in &t.normal_stresses {
-                let label = format!("sigma_n = {} kPa", fmt_num(sigma_n / 1e3));
-                let rows = p
-                    .visit(ShearRun {
-                        control: normal_control(t, sigma_n),
-                        increments: &inc,
-                    })
-                    .map_err(|e| out.run_error(&label, e.to_string()))?
-                    .map_err(|e| out.run_error(&label, e))?;
-                runs.push((label, format!("sn{}kPa", fmt_num(sigma_n / 1e3)), rows));
-            }
+            let runs = shear_runs(&out, p, t, "")?;
             let cases = out.interface_csvs(&runs)?;
-            (p.name(), cases, shear_figure(&title, p.name(), t, [c, s], &runs))
+            let dir = shear_direction(t);
+            (p.name(), cases, shear_figure(&title, p.name(), t, dir, &runs))
         }
         (TestSpec::JumpPath(t), Some(p), _) => {
             let label = format!("sigma_n0 = {} kPa", fmt_num(t.sigma_n0 / 1e3));
@@ -177,54 +226,177 @@ pub fn run_file(path: &Path, out_dir: &Path) -> Result<Summary, PointError> {
             let cases = out.interface_csvs(&runs)?;
             (p.name(), cases, jump_figure(&title, p.name(), &runs))
         }
-        (TestSpec::Triaxial(t), _, Some(p)) => {
-            let inc = t.path.increments();
+        (test, _, Some(p)) => {
             let mut runs = Vec::new();
-            for &s3 in &t.confining_pressures {
-                let label = format!("sigma_3 = {} kPa", fmt_num(s3 / 1e3));
+            for plan in solid_plans(test) {
                 let rows = p
-                    .visit(SolidRun {
-                        sigma0: Stress6::isotropic(-s3),
-                        steps: triaxial_steps(s3, &inc),
-                    })
-                    .map_err(|e| out.run_error(&label, e.to_string()))?
-                    .map_err(|(step, e)| out.run_error(&label, format!("step {step}: {e}")))?;
-                runs.push((label, format!("s3_{}kPa", fmt_num(s3 / 1e3)), rows));
+                    .visit(SolidRun { plan: &plan })
+                    .map_err(|e| out.run_error(&plan.label, e.to_string()))?
+                    .map_err(|e| out.run_error(&plan.label, e))?;
+                runs.push((plan.label, plan.suffix, rows));
             }
-            let cases = out.solid_csvs(&runs)?;
-            (p.name(), cases, solid_figure(&title, p.name(), "triaxial", &runs))
-        }
-        (TestSpec::Oedometer(t), _, Some(p)) => {
-            let label = format!("p0 = {} kPa", fmt_num(t.initial_pressure / 1e3));
-            let rows = p
-                .visit(SolidRun {
-                    sigma0: Stress6::isotropic(-t.initial_pressure),
-                    steps: oedometer_steps(&t.path.increments()),
-                })
-                .map_err(|e| out.run_error(&label, e.to_string()))?
-                .map_err(|(step, e)| out.run_error(&label, format!("step {step}: {e}")))?;
-            let runs = vec![(label, "oedometer".to_string(), rows)];
             let cases = out.solid_csvs(&runs)?;
             (
                 p.name(),
                 cases,
-                solid_figure(&title, p.name(), "oedometer", &runs),
+                solid_figure(&title, p.name(), test.name(), &runs),
             )
         }
         _ => unreachable!("validate() pairs the test kind with its material"),
     };
     let png = out_dir.join(format!("{stem}.png"));
-    figure.save_png(&png).map_err(|source| PointError::Plot {
-        file: file.clone(),
-        source,
-    })?;
+    out.save(&figure, &png)?;
     Ok(Summary {
         title,
         model: model.to_string(),
         kind: spec.test.name().to_string(),
         cases,
         png,
+        crosscheck: Vec::new(),
+        table: None,
     })
+}
+
+/// Unit vector of the shear direction in the (s, a) plane.
+fn shear_direction(t: &DirectShearTest) -> [f64; 2] {
+    let dir = t.direction_deg.to_radians();
+    [dir.cos(), dir.sin()]
+}
+
+/// Runs a direct-shear test at each of its normal stresses; `prefix` goes before the labels
+/// and CSV suffixes (comparison mode).
+fn shear_runs(
+    out: &Output<'_>,
+    p: &InterfaceParams,
+    t: &DirectShearTest,
+    prefix: &str,
+) -> Result<Vec<(String, String, Vec<InterfaceRow>)>, PointError> {
+    let [c, s] = shear_direction(t);
+    let inc: Vec<[f64; 2]> = t.path.increments().iter().map(|u| [u * c, u * s]).collect();
+    let mut runs = Vec::new();
+    for &sigma_n in &t.normal_stresses {
+        let label = format!("{prefix}sigma_n = {} kPa", fmt_num(sigma_n / 1e3));
+        let rows = p
+            .visit(ShearRun {
+                control: normal_control(t, sigma_n),
+                increments: &inc,
+            })
+            .map_err(|e| out.run_error(&label, e.to_string()))?
+            .map_err(|e| out.run_error(&label, e))?;
+        let suffix = format!("{}sn{}kPa", prefix.replace(", ", "_"), fmt_num(sigma_n / 1e3));
+        runs.push((label, suffix, rows));
+    }
+    Ok(runs)
+}
+
+/// Labels of the laws of a comparison: the `model:` tags, numbered when a tag repeats.
+fn law_labels(laws: &[InterfaceParams]) -> Vec<String> {
+    laws.iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let repeated = laws.iter().filter(|q| q.name() == p.name()).count() > 1;
+            if repeated {
+                format!("{}_{}", p.name(), i + 1)
+            } else {
+                p.name().to_string()
+            }
+        })
+        .collect()
+}
+
+/// Comparison mode: every law through the same direct-shear test; one CSV per law and normal
+/// stress, the cross-check table (`<stem>_table.csv`) and a figure with one column per normal
+/// stress (τ–u on top, δ_n–u below) and one curve per law.
+fn run_crosscheck(
+    out: &Output<'_>,
+    title: &str,
+    laws: &[InterfaceParams],
+    t: &DirectShearTest,
+) -> Result<Summary, PointError> {
+    let labels = law_labels(laws);
+    let dir = shear_direction(t);
+    let mut cases = Vec::new();
+    let mut table = Vec::new();
+    let mut all_runs = Vec::new();
+    for (p, name) in laws.iter().zip(&labels) {
+        let runs = shear_runs(out, p, t, &format!("{name}, "))?;
+        cases.extend(out.interface_csvs(&runs)?);
+        for ((_, _, rows), &sigma_n) in runs.iter().zip(&t.normal_stresses) {
+            table.push(crosscheck_row(name, sigma_n, dir, rows));
+        }
+        all_runs.push((name.clone(), runs));
+    }
+    let table_path = out.dir.join(format!("{}_table.csv", out.stem));
+    write_crosscheck_csv(&table_path, &table).map_err(|source| PointError::Io {
+        path: table_path.clone(),
+        source,
+    })?;
+    let png = out.dir.join(format!("{}.png", out.stem));
+    out.save(&crosscheck_figure(title, t, dir, &all_runs), &png)?;
+    Ok(Summary {
+        title: title.to_string(),
+        model: labels.join(" + "),
+        kind: "direct_shear".to_string(),
+        cases,
+        png,
+        crosscheck: table,
+        table: Some(table_path),
+    })
+}
+
+/// Shear displacement along the shear direction (m).
+fn shear_u(r: &InterfaceRow, dir: [f64; 2]) -> f64 {
+    r.jump[0] * dir[0] + r.jump[1] * dir[1]
+}
+
+/// The cross-check figures of one run (see [`CrossCheckRow`]).
+fn crosscheck_row(model: &str, sigma_n: f64, dir: [f64; 2], rows: &[InterfaceRow]) -> CrossCheckRow {
+    let (i_peak, peak) =
+        rows.iter().enumerate().fold(
+            (0, 0.0_f64),
+            |acc, (i, r)| if r.tau > acc.1 { (i, r.tau) } else { acc },
+        );
+    let at = |fraction: f64| -> f64 {
+        let level = fraction * peak;
+        match rows.iter().position(|r| r.tau >= level) {
+            Some(0) | None => shear_u(&rows[0], dir),
+            Some(i) => {
+                let (a, b) = (&rows[i - 1], &rows[i]);
+                let w = (level - a.tau) / (b.tau - a.tau);
+                shear_u(a, dir) + w * (shear_u(b, dir) - shear_u(a, dir))
+            }
+        }
+    };
+    CrossCheckRow {
+        model: model.to_string(),
+        sigma_n,
+        peak_tau: peak,
+        u_peak: shear_u(&rows[i_peak], dir),
+        u50: at(0.5),
+        u95: at(0.95),
+        delta_n_end: rows.last().map_or(0.0, |r| r.jump[2]),
+    }
+}
+
+/// Writes the cross-check table (kPa and mm, one header line).
+fn write_crosscheck_csv(path: &Path, table: &[CrossCheckRow]) -> std::io::Result<()> {
+    let mut text = String::from(
+        "model,sigma_n_kPa,peak_tau_kPa,peak_over_sigma_n,u_peak_mm,u50_mm,u95_mm,delta_n_end_mm\n",
+    );
+    for r in table {
+        text.push_str(&format!(
+            "{},{},{},{},{},{},{},{}\n",
+            r.model,
+            r.sigma_n / 1e3,
+            r.peak_tau / 1e3,
+            r.peak_tau / r.sigma_n,
+            r.u_peak * 1e3,
+            r.u50 * 1e3,
+            r.u95 * 1e3,
+            r.delta_n_end * 1e3
+        ));
+    }
+    std::fs::write(path, text)
 }
 
 /// Top level of a test file, sections kept as YAML values so that each is parsed on its own and
@@ -236,6 +408,8 @@ struct RawFile {
     title: Option<String>,
     #[serde(default)]
     interface: Option<serde_yaml::Value>,
+    #[serde(default)]
+    interfaces: Option<Vec<serde_yaml::Value>>,
     #[serde(default)]
     solid: Option<serde_yaml::Value>,
     test: serde_yaml::Value,
@@ -252,23 +426,97 @@ fn parse(text: &str) -> Result<PointTestFile, String> {
     }
     Ok(PointTestFile {
         title: raw.title,
-        interface: raw.interface.map(|v| section(v, "interface")).transpose()?,
-        solid: raw.solid.map(|v| section(v, "solid")).transpose()?,
+        interface: raw
+            .interface
+            .map(|v| section(with_seed_defaults(v), "interface"))
+            .transpose()?,
+        interfaces: raw
+            .interfaces
+            .map(|list| {
+                list.into_iter()
+                    .enumerate()
+                    .map(|(i, v)| section(with_seed_defaults(v), &format!("interfaces[{i}]")))
+                    .collect::<Result<Vec<_>, _>>()
+            })
+            .transpose()?,
+        solid: raw
+            .solid
+            .map(|v| section(with_seed_defaults(v), "solid"))
+            .transpose()?,
         test: section(raw.test, "test")?,
     })
+}
+
+/// Fills the keys a material section omits with the seed-table values of its `model:` for the
+/// generalized-plasticity models (seed Tables 1 and 2), whose parameter structs require every
+/// key; other sections are returned unchanged (their structs default omitted keys themselves).
+fn with_seed_defaults(value: serde_yaml::Value) -> serde_yaml::Value {
+    use crate::material::{interface_gp::GpInterfaceParams, rockfill_gp::RockfillGpParams};
+    let defaults = match value.get("model").and_then(|m| m.as_str()) {
+        Some("gp_interface") => serde_yaml::to_value(GpInterfaceParams::default()),
+        Some("rockfill_gp") => serde_yaml::to_value(RockfillGpParams::default()),
+        _ => return value,
+    };
+    match (value, defaults) {
+        (serde_yaml::Value::Mapping(mut given), Ok(serde_yaml::Value::Mapping(seed))) => {
+            for (k, v) in seed {
+                if !given.contains_key(&k) {
+                    given.insert(k, v);
+                }
+            }
+            serde_yaml::Value::Mapping(given)
+        }
+        (value, _) => value,
+    }
 }
 
 /// Checks the file beyond its format; errors are (YAML path, reason).
 fn validate(spec: &PointTestFile) -> Result<(), (String, String)> {
     let err = |f: &str, r: &str| Err((f.to_string(), r.to_string()));
-    match (&spec.interface, &spec.solid) {
-        (Some(_), Some(_)) => return err("solid", "give either `interface` or `solid`, not both"),
-        (None, None) => return err("interface", "missing: give an `interface` or a `solid` material"),
-        _ => {}
+    let given = [
+        spec.interface.is_some(),
+        spec.interfaces.is_some(),
+        spec.solid.is_some(),
+    ];
+    match given.iter().filter(|g| **g).count() {
+        0 => {
+            return err(
+                "interface",
+                "missing: give an `interface`, a list `interfaces` or a `solid` material",
+            )
+        }
+        1 => {}
+        _ => {
+            let field = if spec.solid.is_some() {
+                "solid"
+            } else {
+                "interfaces"
+            };
+            return err(field, "give only one of `interface`, `interfaces` and `solid`");
+        }
     }
-    if let Some(p) = &spec.interface {
+    let laws: Vec<(String, &InterfaceParams)> = match (&spec.interface, &spec.interfaces) {
+        (Some(p), _) => vec![("interface".to_string(), p)],
+        (_, Some(list)) => {
+            if list.is_empty() {
+                return err("interfaces", "must list at least one interface law");
+            }
+            if !matches!(spec.test, TestSpec::DirectShear(_)) {
+                return err(
+                    "test.kind",
+                    "a comparison (`interfaces:`) runs a `direct_shear` test",
+                );
+            }
+            list.iter()
+                .enumerate()
+                .map(|(i, p)| (format!("interfaces[{i}]"), p))
+                .collect()
+        }
+        _ => Vec::new(),
+    };
+    for (field, p) in &laws {
         p.validate()
-            .map_err(|e| (format!("interface.{}", e.field), e.reason))?;
+            .map_err(|e| (format!("{field}.{}", e.field), e.reason))?;
         if !spec.test.is_interface() {
             return err(
                 "test.kind",
@@ -307,6 +555,19 @@ fn validate(spec: &PointTestFile) -> Result<(), (String, String)> {
         }
         Ok(())
     };
+    let start = |p0: Option<f64>, steps: Option<usize>| -> Result<(), (String, String)> {
+        if let Some(p0) = p0 {
+            list("initial_pressure", &[p0], true)
+                .map_err(|(_, r)| ("test.initial_pressure".to_string(), r))?;
+        }
+        if steps == Some(0) {
+            return Err((
+                "test.consolidation_steps".to_string(),
+                "must be at least 1".to_string(),
+            ));
+        }
+        Ok(())
+    };
     match &spec.test {
         TestSpec::DirectShear(t) => {
             list("normal_stresses", &t.normal_stresses, false)?;
@@ -342,12 +603,39 @@ fn validate(spec: &PointTestFile) -> Result<(), (String, String)> {
         }
         TestSpec::Triaxial(t) => {
             list("confining_pressures", &t.confining_pressures, true)?;
+            start(t.initial_pressure, t.consolidation_steps)?;
             t.path.validate("test.path")
         }
+        TestSpec::CyclicTriaxial(t) => {
+            list("confining_pressures", &t.confining_pressures, true)?;
+            start(t.initial_pressure, t.consolidation_steps)?;
+            if !(t.q_min.is_finite() && t.q_min >= 0.0) {
+                return err("test.q_min", "must be a finite number >= 0 (Pa)");
+            }
+            if !(t.q_max.is_finite() && t.q_max > t.q_min) {
+                return err("test.q_max", "must be a finite number > q_min (Pa)");
+            }
+            if t.cycles == 0 {
+                return err("test.cycles", "must be at least 1");
+            }
+            if t.steps_per_half == 0 {
+                return err("test.steps_per_half", "must be at least 1");
+            }
+            Ok(())
+        }
         TestSpec::Oedometer(t) => {
-            list("initial_pressure", &[t.initial_pressure], false)
+            list("initial_pressure", &[t.initial_pressure], true)
                 .map_err(|(_, r)| ("test.initial_pressure".to_string(), r))?;
             t.path.validate("test.path")
+        }
+        TestSpec::IsotropicCompression(t) => {
+            list("initial_pressure", &[t.initial_pressure], true)
+                .map_err(|(_, r)| ("test.initial_pressure".to_string(), r))?;
+            list("pressures", &t.pressures, true)?;
+            if t.steps_per_segment == 0 {
+                return err("test.steps_per_segment", "must be at least 1");
+            }
+            Ok(())
         }
     }
 }
@@ -392,15 +680,106 @@ impl InterfaceVisitor for JumpRun<'_> {
     }
 }
 
-struct SolidRun {
-    sigma0: Stress6,
-    steps: Vec<[super::solid::Control; 6]>,
+/// One run of a solid test: the virgin isotropic start at p0, an optional isotropic
+/// consolidation to σ3 (not recorded) and the recorded steps.
+struct SolidPlan {
+    label: String,
+    suffix: String,
+    p0: f64,
+    consolidation: Option<(f64, usize)>,
+    steps: Vec<StepControl>,
 }
 
-impl SolidVisitor for SolidRun {
-    type Output = Result<Vec<SolidRow>, (usize, crate::error::MaterialError)>;
+/// The runs of a solid test (one per confining pressure for the triaxial tests).
+fn solid_plans(test: &TestSpec) -> Vec<SolidPlan> {
+    let consolidation = |p0: f64, s3: f64, steps: Option<usize>| {
+        (p0 != s3).then(|| (s3, steps.unwrap_or(DEFAULT_CONSOLIDATION_STEPS)))
+    };
+    let start_label = |p0: f64, s3: f64| {
+        if p0 == s3 {
+            String::new()
+        } else {
+            format!(" (p0 = {} kPa)", fmt_num(p0 / 1e3))
+        }
+    };
+    match test {
+        TestSpec::Triaxial(t) => {
+            let inc = t.path.increments();
+            t.confining_pressures
+                .iter()
+                .map(|&s3| {
+                    let p0 = t.initial_pressure.unwrap_or(s3);
+                    SolidPlan {
+                        label: format!("sigma_3 = {} kPa{}", fmt_num(s3 / 1e3), start_label(p0, s3)),
+                        suffix: format!("s3_{}kPa", fmt_num(s3 / 1e3)),
+                        p0,
+                        consolidation: consolidation(p0, s3, t.consolidation_steps),
+                        steps: triaxial_strain_steps(s3, &inc),
+                    }
+                })
+                .collect()
+        }
+        TestSpec::CyclicTriaxial(t) => t
+            .confining_pressures
+            .iter()
+            .map(|&s3| {
+                let p0 = t.initial_pressure.unwrap_or(s3);
+                let n = t.steps_per_half;
+                let mut steps: Vec<StepControl> = if t.q_min > 0.0 {
+                    (1..=n)
+                        .map(|k| triaxial_stress_step(s3, t.q_min * k as f64 / n as f64))
+                        .collect()
+                } else {
+                    Vec::new()
+                };
+                steps.extend(cyclic_triaxial(s3, t.q_min, t.q_max, t.cycles, n));
+                SolidPlan {
+                    label: format!("sigma_3 = {} kPa{}", fmt_num(s3 / 1e3), start_label(p0, s3)),
+                    suffix: format!("s3_{}kPa", fmt_num(s3 / 1e3)),
+                    p0,
+                    consolidation: consolidation(p0, s3, t.consolidation_steps),
+                    steps,
+                }
+            })
+            .collect(),
+        TestSpec::Oedometer(t) => vec![SolidPlan {
+            label: format!("p0 = {} kPa", fmt_num(t.initial_pressure / 1e3)),
+            suffix: "oedometer".to_string(),
+            p0: t.initial_pressure,
+            consolidation: None,
+            steps: oedometer_steps(&t.path.increments()),
+        }],
+        TestSpec::IsotropicCompression(t) => vec![SolidPlan {
+            label: format!("p0 = {} kPa", fmt_num(t.initial_pressure / 1e3)),
+            suffix: "isotropic".to_string(),
+            p0: t.initial_pressure,
+            consolidation: None,
+            steps: isotropic_path(t.initial_pressure, &t.pressures, t.steps_per_segment),
+        }],
+        TestSpec::DirectShear(_) | TestSpec::JumpPath(_) => Vec::new(),
+    }
+}
+
+struct SolidRun<'a> {
+    plan: &'a SolidPlan,
+}
+
+impl SolidVisitor for SolidRun<'_> {
+    type Output = Result<Vec<DriverRow>, String>;
     fn visit<M: SolidModel>(self, model: &M) -> Self::Output {
-        run_solid_path(model, &self.sigma0, &self.steps)
+        let plan = self.plan;
+        let mut driver = MaterialPointDriver::new(model, &Stress6::isotropic(-plan.p0))
+            .map_err(|e| format!("initial state: {e}"))?;
+        if let Some((s3, n)) = plan.consolidation {
+            driver
+                .run(&isotropic_compression(plan.p0, s3, n))
+                .map_err(|e| format!("isotropic consolidation to {} kPa: {e}", fmt_num(s3 / 1e3)))?;
+            driver = MaterialPointDriver::from_state(model, driver.state().clone());
+        }
+        if let Err(e) = driver.run(&plan.steps) {
+            return Err(format!("step {}: {e}", driver.rows().len()));
+        }
+        Ok(driver.rows().to_vec())
     }
 }
 
@@ -451,6 +830,13 @@ const SOLID_HEADER: [&str; 17] = [
 ];
 
 impl Output<'_> {
+    fn save(&self, figure: &Figure, png: &Path) -> Result<(), PointError> {
+        figure.save_png(png).map_err(|source| PointError::Plot {
+            file: self.file.to_path_buf(),
+            source,
+        })
+    }
+
     fn run_error(&self, case: &str, message: String) -> PointError {
         PointError::Run {
             file: self.file.to_path_buf(),
@@ -506,7 +892,7 @@ impl Output<'_> {
             .collect()
     }
 
-    fn solid_csvs(&self, runs: &[(String, String, Vec<SolidRow>)]) -> Result<Vec<CaseSummary>, PointError> {
+    fn solid_csvs(&self, runs: &[(String, String, Vec<DriverRow>)]) -> Result<Vec<CaseSummary>, PointError> {
         runs.iter()
             .map(|(label, suffix, rows)| {
                 let table: Vec<Vec<f64>> = rows
@@ -536,8 +922,9 @@ impl Output<'_> {
 }
 
 /// Compression-positive triaxial quantities of a row: p = −tr σ/3, q = σ_a − σ_r with
-/// σ_a = −σ_zz and σ_r = −(σ_xx + σ_yy)/2, ε_a = −ε_zz, ε_v = −tr ε.
-fn solid_invariants(r: &SolidRow) -> (f64, f64, f64, f64) {
+/// σ_a = −σ_zz and σ_r = −(σ_xx + σ_yy)/2 (signed: negative in extension), ε_a = −ε_zz,
+/// ε_v = −tr ε.
+fn solid_invariants(r: &DriverRow) -> (f64, f64, f64, f64) {
     let s = &r.stress;
     let p = -(s[0] + s[1] + s[2]) / 3.0;
     let q = 0.5 * (s[0] + s[1]) - s[2];
@@ -642,53 +1029,94 @@ fn jump_figure(title: &str, model: &str, runs: &[(String, String, Vec<InterfaceR
         .with(normal)
 }
 
-fn solid_figure(title: &str, model: &str, kind: &str, runs: &[(String, String, Vec<SolidRow>)]) -> Figure {
+fn solid_figure(title: &str, model: &str, kind: &str, runs: &[(String, String, Vec<DriverRow>)]) -> Figure {
     let mut q_ea = Panel::new(
-        "Deviator stress",
+        "Deviator stress - axial strain",
         "axial strain eps_a (%, compression +)",
-        "q = sigma_a - sigma_r (kPa)",
+        "deviator q = sigma_a - sigma_r (kPa)",
     );
     let mut ev_ea = Panel::new(
-        "Volumetric strain",
+        "Volumetric strain - axial strain",
         "axial strain eps_a (%, compression +)",
-        "eps_v (%, compression +)",
+        "volumetric strain eps_v (%, compression +)",
     );
-    let mut pq = Panel::new("Stress path", "p (kPa, compression +)", "q (kPa)");
-    let mut sv = Panel::new(
-        "Axial stress",
-        "axial strain eps_a (%, compression +)",
-        "sigma_a (kPa, compression +)",
+    let mut pq = Panel::new(
+        "Stress path",
+        "mean stress p (kPa, compression +)",
+        "deviator q (kPa)",
+    );
+    let mut ev_p = Panel::new(
+        "Compression curve",
+        "mean stress p (kPa, compression +)",
+        "volumetric strain eps_v (%, compression +)",
     );
     for (label, _, rows) in runs {
-        let inv: Vec<(f64, f64, f64, f64, f64)> = rows
-            .iter()
-            .map(|r| {
-                let (p, q, ea, ev) = solid_invariants(r);
-                (p, q, ea, ev, -r.stress[2])
-            })
-            .collect();
-        q_ea.push(Series::line(
-            label.clone(),
-            inv.iter().map(|v| (100.0 * v.2, 1e-3 * v.1)).collect(),
-        ));
-        ev_ea.push(Series::line(
-            label.clone(),
-            inv.iter().map(|v| (100.0 * v.2, 100.0 * v.3)).collect(),
-        ));
-        pq.push(Series::line(
-            label.clone(),
-            inv.iter().map(|v| (1e-3 * v.0, 1e-3 * v.1)).collect(),
-        ));
-        sv.push(Series::line(
-            label.clone(),
-            inv.iter().map(|v| (100.0 * v.2, 1e-3 * v.4)).collect(),
-        ));
+        let inv: Vec<(f64, f64, f64, f64)> = rows.iter().map(solid_invariants).collect();
+        let series = |f: &dyn Fn(&(f64, f64, f64, f64)) -> (f64, f64)| {
+            Series::line(label.clone(), inv.iter().map(f).collect())
+        };
+        q_ea.push(series(&|v| (100.0 * v.2, 1e-3 * v.1)));
+        ev_ea.push(series(&|v| (100.0 * v.2, 100.0 * v.3)));
+        pq.push(series(&|v| (1e-3 * v.0, 1e-3 * v.1)));
+        ev_p.push(series(&|v| (1e-3 * v.0, 100.0 * v.3)));
     }
     Figure::new(format!("{title}  [{model}, {kind}]"))
         .with(q_ea)
         .with(ev_ea)
         .with(pq)
-        .with(sv)
+        .with(ev_p)
+}
+
+/// Comparison figure: one column per normal stress, τ–u on top and δ_n–u below, one curve per law.
+fn crosscheck_figure(
+    title: &str,
+    t: &DirectShearTest,
+    dir: [f64; 2],
+    laws: &[(String, Vec<(String, String, Vec<InterfaceRow>)>)],
+) -> Figure {
+    let n = t.normal_stresses.len();
+    let control = match t.control {
+        NormalControlKind::Cnl => "CNL",
+        NormalControlKind::Cns => "CNS",
+    };
+    let mut top: Vec<Panel> = Vec::with_capacity(n);
+    let mut bottom: Vec<Panel> = Vec::with_capacity(n);
+    for &sigma_n in &t.normal_stresses {
+        let sn = fmt_num(sigma_n / 1e3);
+        top.push(Panel::new(
+            format!("{control} sigma_n = {sn} kPa: shear stress"),
+            "shear displacement u (mm)",
+            "shear stress tau (kPa)",
+        ));
+        bottom.push(Panel::new(
+            format!("{control} sigma_n = {sn} kPa: normal displacement"),
+            "shear displacement u (mm)",
+            "normal jump delta_n (mm, + dilation)",
+        ));
+    }
+    for (name, runs) in laws {
+        for (k, (_, _, rows)) in runs.iter().enumerate() {
+            let tau = |r: &InterfaceRow| 1e-3 * (r.traction[0] * dir[0] + r.traction[1] * dir[1]);
+            top[k].push(Series::line(
+                name.clone(),
+                rows.iter().map(|r| (1e3 * shear_u(r, dir), tau(r))).collect(),
+            ));
+            bottom[k].push(Series::line(
+                name.clone(),
+                rows.iter()
+                    .map(|r| (1e3 * shear_u(r, dir), 1e3 * r.jump[2]))
+                    .collect(),
+            ));
+        }
+    }
+    let mut fig = Figure::new(format!(
+        "{title}  [interface laws compared, {control} direct shear]"
+    ))
+    .columns(n);
+    for p in top.into_iter().chain(bottom) {
+        fig.push(p);
+    }
+    fig
 }
 
 #[cfg(test)]
@@ -733,7 +1161,7 @@ mod tests {
             );
             assert!(s.to_string().contains(&s.title));
         }
-        assert_eq!(kinds.len(), 4, "{kinds:?}");
+        assert_eq!(kinds.len(), 6, "{kinds:?}");
     }
 
     /// HY-1 through the runner: the CSV of the 100 kPa run holds τ(30 mm) ≈ 63 kPa.
