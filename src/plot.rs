@@ -233,7 +233,8 @@ const PALETTE: [RGBColor; 8] = [
 /// Compact tick label: fixed notation for moderate magnitudes, scientific otherwise.
 fn tick(v: &f64) -> String {
     let a = v.abs();
-    if a == 0.0 {
+    // Round-off around zero (e.g. -1.1e-16 at the end of a flat axis) is printed as 0.
+    if a < 1e-9 {
         "0".to_string()
     } else if !(1e-3..1e5).contains(&a) {
         format!("{v:.2e}")
@@ -377,6 +378,7 @@ mod tests {
     #[test]
     fn tick_labels_are_compact() {
         assert_eq!(tick(&0.0), "0");
+        assert_eq!(tick(&-1.11e-16), "0");
         assert_eq!(tick(&12.5), "12.5");
         assert_eq!(tick(&2.0e6), "2.00e6");
         assert_eq!(tick(&-0.25), "-0.25");

@@ -1250,6 +1250,182 @@ mod tests {
         );
     }
 
+    fn example(name: &str) -> PathBuf {
+        Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("inputs/point")
+            .join(name)
+    }
+
+    /// The numeric rows of a CSV written by the runner.
+    fn csv_rows(path: &Path) -> Vec<Vec<f64>> {
+        std::fs::read_to_string(path)
+            .unwrap()
+            .lines()
+            .skip(1)
+            .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+            .collect()
+    }
+
+    fn run_yaml(text: &str) -> (tempfile::TempDir, Summary) {
+        let dir = tempfile::tempdir().unwrap();
+        let file = dir.path().join("t.yaml");
+        std::fs::write(&file, text).unwrap();
+        let s = run_file(&file, dir.path()).unwrap_or_else(|e| panic!("{e}"));
+        (dir, s)
+    }
+
+    /// Issue 3 acceptance: the cross-check of inputs/point/interface_crosscheck.yaml.
+    /// Table: 3 laws × 3 normal stresses, in the file's order, also in the CSV (kPa, mm).
+    /// Mohr–Coulomb and hyperbolic peak at τ_f = c + σ_n·tan φ of their seed tables to 1 %
+    /// (the hyperbolic law is capped at τ_f, which the 200 mm path passes at every σ_n);
+    /// 0 < u50 < u95 ≤ u_peak for every law; the GP interface's u50 is within a factor 2 of the
+    /// hyperbolic law's at every σ_n; neither MC nor hyperbolic moves normally under CNL, the GP
+    /// law ends dilated at 100 kPa and contracted at 400 kPa (state dependence).
+    #[test]
+    fn crosscheck_table_is_physically_sound() {
+        use crate::material::interface_hyperbolic::HyperbolicParams;
+        use crate::material::interface_mc::MohrCoulombParams;
+        let out = tempfile::tempdir().unwrap();
+        let s = run_file(&example("interface_crosscheck.yaml"), out.path()).unwrap();
+        let models = ["gp_interface", "hyperbolic", "mohr_coulomb"];
+        let sns = [100e3, 200e3, 400e3];
+        assert_eq!(s.crosscheck.len(), 9);
+        assert_eq!(s.cases.len(), 9);
+        for (i, r) in s.crosscheck.iter().enumerate() {
+            assert_eq!((r.model.as_str(), r.sigma_n), (models[i / 3], sns[i % 3]));
+            assert!(
+                r.peak_tau.is_finite() && r.u50 > 0.0 && r.u50 < r.u95 && r.u95 <= r.u_peak + 1e-12,
+                "{r:?}"
+            );
+        }
+        let table = std::fs::read_to_string(s.table.as_ref().unwrap()).unwrap();
+        let lines: Vec<&str> = table.lines().collect();
+        assert_eq!(lines.len(), 10);
+        assert_eq!(
+            lines[0],
+            "model,sigma_n_kPa,peak_tau_kPa,peak_over_sigma_n,u_peak_mm,u50_mm,u95_mm,delta_n_end_mm"
+        );
+        for (line, r) in lines[1..].iter().zip(&s.crosscheck) {
+            let f: Vec<&str> = line.split(',').collect();
+            assert_eq!(f.len(), 8);
+            assert_eq!(f[0], r.model);
+            let v: Vec<f64> = f[1..].iter().map(|x| x.parse().unwrap()).collect();
+            assert!((v[1] - r.peak_tau / 1e3).abs() < 1e-9 && (v[4] - r.u50 * 1e3).abs() < 1e-9);
+        }
+        let hy = HyperbolicParams::default();
+        let mc = MohrCoulombParams::default();
+        for (k, &sn) in sns.iter().enumerate() {
+            let (g, h, m) = (&s.crosscheck[k], &s.crosscheck[3 + k], &s.crosscheck[6 + k]);
+            let tf_h = hy.c + sn * hy.phi.to_radians().tan();
+            let tf_m = mc.c + sn * mc.phi.to_radians().tan();
+            assert!((h.peak_tau - tf_h).abs() < 0.01 * tf_h, "{h:?} vs {tf_h}");
+            assert!((m.peak_tau - tf_m).abs() < 0.01 * tf_m, "{m:?} vs {tf_m}");
+            let ratio = g.u50 / h.u50;
+            assert!(
+                (0.5..=2.0).contains(&ratio),
+                "u50 GP/hyperbolic = {ratio} at {sn} Pa"
+            );
+            assert!(h.delta_n_end.abs() < 1e-9 && m.delta_n_end.abs() < 1e-9);
+        }
+        assert!(s.crosscheck[0].delta_n_end > 0.0 && s.crosscheck[2].delta_n_end < 0.0);
+        let text = s.to_string();
+        assert!(
+            text.contains("u50 (mm)") && text.contains("mohr_coulomb"),
+            "{text}"
+        );
+    }
+
+    /// Comparison-mode input errors name the list entry.
+    #[test]
+    fn crosscheck_errors_name_the_entry() {
+        let msg = run_text(&format!(
+            "interfaces:\n  - model: hyperbolic\n  - model: mohr_coulomb\n    phi: 95.0\n{GOOD_TEST}"
+        ))
+        .to_string();
+        assert!(msg.contains("interfaces[1].phi"), "{msg}");
+        let msg = run_text(&format!("interfaces: []\n{GOOD_TEST}")).to_string();
+        assert!(msg.contains("interfaces"), "{msg}");
+        let msg = run_text(&format!(
+            "interface: {{model: joint}}\ninterfaces: [{{model: joint}}]\n{GOOD_TEST}"
+        ))
+        .to_string();
+        assert!(msg.contains("only one of"), "{msg}");
+    }
+
+    /// Elastic drained triaxial through the driver: q/ε_a = E and ε_v/ε_a = 1 − 2ν at every
+    /// row (to 1e-6), lateral stress held at σ3 (to 1e-8 relative).
+    #[test]
+    fn elastic_triaxial_recovers_young_and_poisson() {
+        let (_dir, s) = run_yaml(
+            "solid: {model: elastic, young: 50.0e6, poisson: 0.3, density: 2000.0}\ntest:\n  kind: triaxial\n  confining_pressures: [200.0e3]\n  path: {kind: monotonic, target: 0.002, steps: 20}\n",
+        );
+        let rows = csv_rows(&s.cases[0].csv);
+        assert_eq!(rows.len(), 21);
+        for r in &rows[1..] {
+            let (q, ea, ev) = (r[14], r[15], r[16]);
+            assert!((q / ea - 50e6).abs() < 1e-6 * 50e6, "{r:?}");
+            assert!((ev / ea - 0.4).abs() < 1e-6, "{r:?}");
+            assert!((r[7] + 200e3).abs() < 1e-8 * 200e3 && (r[8] + 200e3).abs() < 1e-8 * 200e3);
+        }
+    }
+
+    /// Spec G7: a triaxial test remembers where the isotropic consolidation started. At
+    /// σ3 = 1000 kPa, a sample consolidated from p0 = 100 kPa (plastic densification on the way)
+    /// starts at p = σ3, q = 0 and is stiffer at ε_a = 1 % than the virgin sample at p0 = σ3.
+    #[test]
+    fn triaxial_start_pressure_is_remembered() {
+        let run = |p0: &str| {
+            let (dir, s) = run_yaml(&format!(
+                "solid: {{model: rockfill_gp}}\ntest:\n  kind: triaxial\n  confining_pressures: [1000.0e3]\n{p0}  path: {{kind: monotonic, target: 0.01, steps: 50}}\n"
+            ));
+            let rows = csv_rows(&s.cases[0].csv);
+            drop(dir);
+            (s.cases[0].label.clone(), rows)
+        };
+        let (virgin_label, virgin) = run("");
+        let (cons_label, cons) = run("  initial_pressure: 100.0e3\n");
+        assert_eq!(virgin_label, "sigma_3 = 1000 kPa");
+        assert_eq!(cons_label, "sigma_3 = 1000 kPa (p0 = 100 kPa)");
+        for rows in [&virgin, &cons] {
+            assert_eq!(rows.len(), 51);
+            assert!((rows[0][13] - 1000e3).abs() < 1e-8 * 1000e3 && rows[0][14].abs() < 1e-8 * 1000e3);
+            assert!(
+                rows[0][15] == 0.0 && rows[0][16] == 0.0,
+                "strain counted from the start of shear"
+            );
+        }
+        let (qv, qc) = (virgin[50][14], cons[50][14]);
+        assert!(
+            qc > 1.05 * qv,
+            "consolidated q = {qc} Pa, virgin q = {qv} Pa at 1 %"
+        );
+    }
+
+    /// Cyclic triaxial example: q reaches q_max and returns to q_min at every half cycle (to
+    /// 1e-6 of q_max), and the axial strain at q = 0 grows from cycle to cycle (plastic strain
+    /// on reloading, spec (R15)).
+    #[test]
+    fn cyclic_triaxial_cycles_between_the_limits() {
+        let out = tempfile::tempdir().unwrap();
+        let s = run_file(&example("rockfill_gp_cyclic.yaml"), out.path()).unwrap();
+        let rows = csv_rows(&s.cases[0].csv);
+        assert_eq!(rows.len(), 10 * 2 * 25 + 1);
+        let mut last_ea = 0.0;
+        for c in 0..10 {
+            let top = &rows[50 * c + 25];
+            let bottom = &rows[50 * c + 50];
+            assert!((top[14] - 2500e3).abs() < 1e-6 * 2500e3, "{top:?}");
+            assert!(bottom[14].abs() < 1e-6 * 2500e3, "{bottom:?}");
+            assert!(
+                bottom[15] > last_ea,
+                "cycle {c}: eps_a {} after {last_ea}",
+                bottom[15]
+            );
+            last_ea = bottom[15];
+        }
+        assert!((s.cases[0].peak - 2500e3).abs() < 1e-6 * 2500e3);
+    }
+
     #[test]
     fn schema_lists_the_models() {
         let s = crate::point::schema_json();
@@ -1260,6 +1436,9 @@ mod tests {
             "elastic",
             "direct_shear",
             "oedometer",
+            "cyclic_triaxial",
+            "isotropic_compression",
+            "interfaces",
         ] {
             assert!(s.contains(m), "{m}");
         }
