@@ -141,7 +141,7 @@ impl fmt::Display for Summary {
         for c in &self.cases {
             writeln!(
                 f,
-                "  {:<28} {:>7} steps  peak {what} {:>10.2} kPa  last {:>10.2} kPa  -> {}",
+                "  {:<36} {:>7} steps  peak {what} {:>10.2} kPa  last {:>10.2} kPa  -> {}",
                 c.label,
                 c.steps,
                 c.peak / 1e3,
@@ -1424,6 +1424,32 @@ mod tests {
             last_ea = bottom[15];
         }
         assert!((s.cases[0].peak - 2500e3).abs() < 1e-6 * 2500e3);
+    }
+
+    /// Regenerates scripts/figures/ (the docs' point-test figures and the cross-check table)
+    /// without the native stack; `scripts/make_point_figures.sh` does the same with the binary.
+    /// Run with `cargo test --release --no-default-features --lib make_point_figures -- --ignored`.
+    #[test]
+    #[ignore = "writes into scripts/figures (run on purpose)"]
+    fn make_point_figures() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let figures = root.join("scripts/figures");
+        std::fs::create_dir_all(&figures).unwrap();
+        let tmp = tempfile::tempdir().unwrap();
+        for name in [
+            "interface_crosscheck",
+            "rockfill_gp_triaxial",
+            "rockfill_gp_cyclic",
+            "gp_interface_cnl_cyclic",
+        ] {
+            let s = run_file(&example(&format!("{name}.yaml")), tmp.path()).unwrap();
+            println!("{s}");
+            std::fs::copy(&s.png, figures.join(format!("{name}.png"))).unwrap();
+            if let Some(table) = &s.table {
+                std::fs::copy(table, figures.join(table.file_name().unwrap())).unwrap();
+            }
+        }
+        assert!(figures.join("interface_crosscheck_table.csv").exists());
     }
 
     #[test]
