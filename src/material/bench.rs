@@ -29,6 +29,7 @@ use super::interface_mc::{MohrCoulombInterface, MohrCoulombParams};
 use super::joint::{JointLaw, JointParams};
 use super::rockfill_gp::{RockfillGp, RockfillGpParams};
 use super::{InterfaceModel, SolidModel};
+use crate::error::MaterialError;
 use crate::tensor::{Local3, Strain6, Stress6, Vector6};
 use std::fmt;
 use std::hint::black_box;
@@ -289,14 +290,19 @@ fn interface_rows<M: InterfaceModel>(model: &M, name: &str, timing: Timing, rows
     }
 }
 
+/// Builds the initial state of a replay.
+type InitFn<'a, S> = dyn Fn() -> Result<S, MaterialError> + 'a;
+/// One update from a committed state: the new state and its substep count.
+type UpdateFn<'a, S, D> = dyn Fn(&S, &D) -> Result<(S, u32), MaterialError> + 'a;
+
 /// Passes of the path from the initial state, each update from the committed state of the
 /// previous one; returns the total substeps, or the first error.
 fn replay<S, D>(
     increments: &[D],
-    init: &dyn Fn() -> Result<S, crate::error::MaterialError>,
-    update: &dyn Fn(&S, &D) -> Result<(S, u32), crate::error::MaterialError>,
+    init: &InitFn<'_, S>,
+    update: &UpdateFn<'_, S, D>,
     passes: usize,
-) -> Result<u64, crate::error::MaterialError> {
+) -> Result<u64, MaterialError> {
     let mut substeps = 0_u64;
     for _ in 0..passes {
         let mut state = init()?;
@@ -318,8 +324,8 @@ fn time_path<S, D>(
     description: String,
     timing: Timing,
     increments: &[D],
-    init: &dyn Fn() -> Result<S, crate::error::MaterialError>,
-    update: &dyn Fn(&S, &D) -> Result<(S, u32), crate::error::MaterialError>,
+    init: &InitFn<'_, S>,
+    update: &UpdateFn<'_, S, D>,
 ) -> BenchRow {
     let n = increments.len();
     if n == 0 {

@@ -263,6 +263,9 @@ fn shear_direction(t: &DirectShearTest) -> [f64; 2] {
     [dir.cos(), dir.sin()]
 }
 
+/// Runs of an interface test: (label, CSV suffix, rows).
+type InterfaceRuns = Vec<(String, String, Vec<InterfaceRow>)>;
+
 /// Runs a direct-shear test at each of its normal stresses; `prefix` goes before the labels
 /// and CSV suffixes (comparison mode).
 fn shear_runs(
@@ -270,7 +273,7 @@ fn shear_runs(
     p: &InterfaceParams,
     t: &DirectShearTest,
     prefix: &str,
-) -> Result<Vec<(String, String, Vec<InterfaceRow>)>, PointError> {
+) -> Result<InterfaceRuns, PointError> {
     let [c, s] = shear_direction(t);
     let inc: Vec<[f64; 2]> = t.path.increments().iter().map(|u| [u * c, u * s]).collect();
     let mut runs = Vec::new();
@@ -921,10 +924,13 @@ impl Output<'_> {
     }
 }
 
+/// (p, q, ε_a, ε_v) of a solid row, see [`solid_invariants`].
+type TriaxialInvariants = (f64, f64, f64, f64);
+
 /// Compression-positive triaxial quantities of a row: p = −tr σ/3, q = σ_a − σ_r with
 /// σ_a = −σ_zz and σ_r = −(σ_xx + σ_yy)/2 (signed: negative in extension), ε_a = −ε_zz,
 /// ε_v = −tr ε.
-fn solid_invariants(r: &DriverRow) -> (f64, f64, f64, f64) {
+fn solid_invariants(r: &DriverRow) -> TriaxialInvariants {
     let s = &r.stress;
     let p = -(s[0] + s[1] + s[2]) / 3.0;
     let q = 0.5 * (s[0] + s[1]) - s[2];
@@ -1051,14 +1057,14 @@ fn solid_figure(title: &str, model: &str, kind: &str, runs: &[(String, String, V
         "volumetric strain eps_v (%, compression +)",
     );
     for (label, _, rows) in runs {
-        let inv: Vec<(f64, f64, f64, f64)> = rows.iter().map(solid_invariants).collect();
-        let series = |f: &dyn Fn(&(f64, f64, f64, f64)) -> (f64, f64)| {
+        let inv: Vec<TriaxialInvariants> = rows.iter().map(solid_invariants).collect();
+        let series = |f: fn(&TriaxialInvariants) -> (f64, f64)| {
             Series::line(label.clone(), inv.iter().map(f).collect())
         };
-        q_ea.push(series(&|v| (100.0 * v.2, 1e-3 * v.1)));
-        ev_ea.push(series(&|v| (100.0 * v.2, 100.0 * v.3)));
-        pq.push(series(&|v| (1e-3 * v.0, 1e-3 * v.1)));
-        ev_p.push(series(&|v| (1e-3 * v.0, 100.0 * v.3)));
+        q_ea.push(series(|v| (100.0 * v.2, 1e-3 * v.1)));
+        ev_ea.push(series(|v| (100.0 * v.2, 100.0 * v.3)));
+        pq.push(series(|v| (1e-3 * v.0, 1e-3 * v.1)));
+        ev_p.push(series(|v| (1e-3 * v.0, 100.0 * v.3)));
     }
     Figure::new(format!("{title}  [{model}, {kind}]"))
         .with(q_ea)
@@ -1072,7 +1078,7 @@ fn crosscheck_figure(
     title: &str,
     t: &DirectShearTest,
     dir: [f64; 2],
-    laws: &[(String, Vec<(String, String, Vec<InterfaceRow>)>)],
+    laws: &[(String, InterfaceRuns)],
 ) -> Figure {
     let n = t.normal_stresses.len();
     let control = match t.control {
