@@ -135,9 +135,13 @@ impl Panel {
                 return (0.0, 1.0);
             }
             let span = hi - lo;
-            if span <= 1e-12 * lo.abs().max(hi.abs()).max(1e-300) {
-                let d = if lo == 0.0 { 1.0 } else { 0.1 * lo.abs() };
-                (lo - d, hi + d)
+            let mag = lo.abs().max(hi.abs());
+            // Degenerate: no relative spread, or only round-off (< 1e-9 in the plotted units,
+            // e.g. a deviator of 1e-10 kPa on an isotropic path).
+            if span <= (1e-12 * mag).max(1e-9) {
+                let mid = 0.5 * (lo + hi);
+                let d = if mag < 1e-9 { 1.0 } else { 0.1 * mag };
+                (mid - d, mid + d)
             } else {
                 (lo - 0.05 * span, hi + 0.05 * span)
             }
@@ -373,6 +377,18 @@ mod tests {
                 && err.contains("/nonexistent/font.ttf"),
             "{err}"
         );
+    }
+
+    /// Flat and round-off-only series get a drawable axis around their value.
+    #[test]
+    fn degenerate_ranges_are_widened() {
+        let flat = Panel::new("t", "x", "y").with(Series::line("", vec![(0.0, 5.0), (1.0, 5.0)]));
+        let (x0, x1, y0, y1) = flat.bounds();
+        assert!((x0 + 0.05).abs() < 1e-12 && (x1 - 1.05).abs() < 1e-12);
+        assert!((y0 - 4.5).abs() < 1e-12 && (y1 - 5.5).abs() < 1e-12, "{y0} {y1}");
+        let noise = Panel::new("t", "x", "y").with(Series::line("", vec![(0.0, 1e-13), (1.0, -2e-12)]));
+        let (_, _, y0, y1) = noise.bounds();
+        assert!((y0 + 1.0).abs() < 1e-9 && (y1 - 1.0).abs() < 1e-9, "{y0} {y1}");
     }
 
     #[test]

@@ -1407,6 +1407,56 @@ mod tests {
         );
     }
 
+    /// RF-2 through the runner (inputs/point/rockfill_gp_triaxial.yaml, 0.05 % steps) against
+    /// the spec §9.1 table (regression hints of an independent implementation): q_peak to 1 %,
+    /// ε_a at the peak to 0.2 % (absolute, 4 steps), the largest contraction and ε_v at 15 % to
+    /// 0.1 % (absolute).
+    #[test]
+    fn rockfill_triaxial_example_reproduces_rf2() {
+        let out = tempfile::tempdir().unwrap();
+        let s = run_file(&example("rockfill_gp_triaxial.yaml"), out.path()).unwrap();
+        // σ3, q_peak (kPa), ε_a at peak (%), max ε_v (%), ε_v at 15 % (%)
+        let expected = [
+            (300.0, 2120.0, 4.9, 0.78, -6.9),
+            (1000.0, 5930.0, 6.4, 1.5, -2.8),
+            (2000.0, 11170.0, 7.3, 2.1, -1.1),
+        ];
+        assert_eq!(s.cases.len(), 3);
+        for (case, (s3, q_pk, ea_pk, ev_max, ev_end)) in s.cases.iter().zip(expected) {
+            let rows = csv_rows(&case.csv);
+            assert_eq!(rows.len(), 301);
+            let peak = rows.iter().max_by(|a, b| a[14].total_cmp(&b[14])).unwrap();
+            let ev_top = rows.iter().map(|r| r[16]).fold(f64::MIN, f64::max);
+            let end = rows.last().unwrap();
+            let what = format!("sigma_3 = {s3} kPa: peak {peak:?}, max eps_v {ev_top}, end {end:?}");
+            assert!((peak[14] / 1e3 - q_pk).abs() < 0.01 * q_pk, "{what}");
+            assert!((100.0 * peak[15] - ea_pk).abs() < 0.2, "{what}");
+            assert!((100.0 * ev_top - ev_max).abs() < 0.1, "{what}");
+            assert!(
+                (100.0 * end[15] - 15.0).abs() < 1e-9 && (100.0 * end[16] - ev_end).abs() < 0.1,
+                "{what}"
+            );
+        }
+    }
+
+    /// RF-3 through the runner: residual ε_v after the first cycle ≈ 1.07 % (to 0.02 %), then
+    /// growing by ≈ 0.038 %/cycle at the second cycle and ≈ 0.029 %/cycle at the tenth (to
+    /// 0.005 %), at a decreasing rate (spec §9.1).
+    #[test]
+    fn rockfill_cyclic_example_reproduces_rf3() {
+        let out = tempfile::tempdir().unwrap();
+        let s = run_file(&example("rockfill_gp_cyclic.yaml"), out.path()).unwrap();
+        let rows = csv_rows(&s.cases[0].csv);
+        let ev: Vec<f64> = (1..=10).map(|c| 100.0 * rows[50 * c][16]).collect();
+        let rate: Vec<f64> = ev.windows(2).map(|w| w[1] - w[0]).collect();
+        assert!((ev[0] - 1.07).abs() < 0.02, "{ev:?}");
+        assert!(
+            (rate[0] - 0.038).abs() < 0.005 && (rate[8] - 0.029).abs() < 0.005,
+            "{rate:?}"
+        );
+        assert!(rate.windows(2).all(|w| w[1] < w[0]), "{rate:?}");
+    }
+
     /// Cyclic triaxial example: q reaches q_max and returns to q_min at every half cycle (to
     /// 1e-6 of q_max), and the axial strain at q = 0 grows from cycle to cycle (plastic strain
     /// on reloading, spec (R15)).
