@@ -1148,7 +1148,7 @@ mod tests {
         let out_dir = std::env::var_os("CFRD_POINT_OUT").map_or(tmp.path().to_path_buf(), PathBuf::from);
         let out = out_dir.as_path();
         let files = examples();
-        assert!(files.len() >= 8, "{files:?}");
+        assert!(files.len() >= 16, "{files:?}");
         let mut kinds = std::collections::BTreeSet::new();
         for f in &files {
             let s = run_file(f, out).unwrap_or_else(|e| panic!("{e}"));
@@ -1158,6 +1158,11 @@ mod tests {
                 let text = std::fs::read_to_string(&c.csv).unwrap();
                 assert_eq!(text.lines().count(), c.steps + 2, "{}", c.csv.display());
                 assert!(c.steps > 0 && c.peak.is_finite());
+            }
+            if let Some(table) = &s.table {
+                let text = std::fs::read_to_string(table).unwrap();
+                assert_eq!(text.lines().count(), s.crosscheck.len() + 1);
+                assert_eq!(s.crosscheck.len(), s.cases.len());
             }
             let png = std::fs::read(&s.png).unwrap();
             assert!(
@@ -1339,6 +1344,18 @@ mod tests {
             text.contains("u50 (mm)") && text.contains("mohr_coulomb"),
             "{text}"
         );
+    }
+
+    /// Gap G2.3 evidence: with the literal `stiffness_basis: strain` reading the GP interface
+    /// reaches half its peak about ten times sooner than the hyperbolic law (u50 ≈ 1.5 mm
+    /// against ≈ 14 mm at 100 kPa), outside the factor 2 that the default reading meets.
+    #[test]
+    fn strain_reading_of_the_gp_interface_is_too_stiff() {
+        let (_dir, s) = run_yaml(
+            "interfaces:\n  - {model: gp_interface, stiffness_basis: strain}\n  - {model: hyperbolic}\ntest:\n  kind: direct_shear\n  normal_stresses: [100.0e3]\n  path: {kind: monotonic, target: 0.2, steps: 400}\n",
+        );
+        let ratio = s.crosscheck[0].u50 / s.crosscheck[1].u50;
+        assert!(ratio < 0.5, "u50 GP(strain)/hyperbolic = {ratio}");
     }
 
     /// Comparison-mode input errors name the list entry.
