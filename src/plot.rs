@@ -135,9 +135,13 @@ impl Panel {
                 return (0.0, 1.0);
             }
             let span = hi - lo;
-            if span <= 1e-12 * lo.abs().max(hi.abs()).max(1e-300) {
-                let d = if lo == 0.0 { 1.0 } else { 0.1 * lo.abs() };
-                (lo - d, hi + d)
+            let mag = lo.abs().max(hi.abs());
+            // Degenerate: no relative spread, or only round-off (< 1e-9 in the plotted units,
+            // e.g. a deviator of 1e-10 kPa on an isotropic path).
+            if span <= (1e-12 * mag).max(1e-9) {
+                let mid = 0.5 * (lo + hi);
+                let d = if mag < 1e-9 { 1.0 } else { 0.1 * mag };
+                (mid - d, mid + d)
             } else {
                 (lo - 0.05 * span, hi + 0.05 * span)
             }
@@ -233,7 +237,8 @@ const PALETTE: [RGBColor; 8] = [
 /// Compact tick label: fixed notation for moderate magnitudes, scientific otherwise.
 fn tick(v: &f64) -> String {
     let a = v.abs();
-    if a == 0.0 {
+    // Round-off around zero (e.g. -1.1e-16 at the end of a flat axis) is printed as 0.
+    if a < 1e-9 {
         "0".to_string()
     } else if !(1e-3..1e5).contains(&a) {
         format!("{v:.2e}")
@@ -374,9 +379,22 @@ mod tests {
         );
     }
 
+    /// Flat and round-off-only series get a drawable axis around their value.
+    #[test]
+    fn degenerate_ranges_are_widened() {
+        let flat = Panel::new("t", "x", "y").with(Series::line("", vec![(0.0, 5.0), (1.0, 5.0)]));
+        let (x0, x1, y0, y1) = flat.bounds();
+        assert!((x0 + 0.05).abs() < 1e-12 && (x1 - 1.05).abs() < 1e-12);
+        assert!((y0 - 4.5).abs() < 1e-12 && (y1 - 5.5).abs() < 1e-12, "{y0} {y1}");
+        let noise = Panel::new("t", "x", "y").with(Series::line("", vec![(0.0, 1e-13), (1.0, -2e-12)]));
+        let (_, _, y0, y1) = noise.bounds();
+        assert!((y0 + 1.0).abs() < 1e-9 && (y1 - 1.0).abs() < 1e-9, "{y0} {y1}");
+    }
+
     #[test]
     fn tick_labels_are_compact() {
         assert_eq!(tick(&0.0), "0");
+        assert_eq!(tick(&-1.11e-16), "0");
         assert_eq!(tick(&12.5), "12.5");
         assert_eq!(tick(&2.0e6), "2.00e6");
         assert_eq!(tick(&-0.25), "-0.25");

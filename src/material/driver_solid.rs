@@ -343,6 +343,15 @@ pub fn triaxial_extension(sigma3: f64, axial_strain: f64, steps: usize) -> Vec<S
     vec![axial_strain_step(sigma3, axial_strain / steps as f64); steps]
 }
 
+/// Drained triaxial steps at σ3 (compression positive, Pa) with the given axial (z)
+/// *compression* strain increments (positive shortens), e.g. of a cyclic strain path.
+pub fn triaxial_strain_steps(sigma3: f64, axial_compression_increments: &[f64]) -> Vec<StepControl> {
+    axial_compression_increments
+        .iter()
+        .map(|&d| axial_strain_step(sigma3, -d))
+        .collect()
+}
+
 /// Triaxial stress state with σ_x = σ_y = σ3 and σ_z = σ3 + q (compression positive, Pa),
 /// as a fully stress-controlled step.
 pub fn triaxial_stress_step(sigma3: f64, q: f64) -> StepControl {
@@ -377,6 +386,27 @@ pub fn cyclic_triaxial(
 /// steps, all other strains fixed.
 pub fn oedometer(axial_strain: f64, steps: usize) -> Vec<StepControl> {
     vec![StepControl::strain([0.0, 0.0, -axial_strain / steps as f64, 0.0, 0.0, 0.0]); steps]
+}
+
+/// Oedometric steps with the given axial (z) *compression* strain increments (positive
+/// shortens), all other strains fixed.
+pub fn oedometer_steps(axial_compression_increments: &[f64]) -> Vec<StepControl> {
+    axial_compression_increments
+        .iter()
+        .map(|&d| StepControl::strain([0.0, 0.0, -d, 0.0, 0.0, 0.0]))
+        .collect()
+}
+
+/// Isotropic stress path from p0 through the pressures `points` (Pa, compression positive),
+/// `steps_per_segment` fully stress-controlled steps per segment.
+pub fn isotropic_path(p0: f64, points: &[f64], steps_per_segment: usize) -> Vec<StepControl> {
+    let mut out = Vec::with_capacity(points.len() * steps_per_segment);
+    let mut from = p0;
+    for &to in points {
+        out.extend(isotropic_compression(from, to, steps_per_segment));
+        from = to;
+    }
+    out
 }
 
 /// Constant stress ratio η = q/p, triaxial compression form (z axial), p from `p_from` to

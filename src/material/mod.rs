@@ -13,6 +13,7 @@ use crate::error::MaterialError;
 use crate::tensor::{Local3, Strain6, Stress6, Tangent3, Tangent6};
 use serde::{de::DeserializeOwned, Serialize};
 
+pub mod bench;
 pub mod driver_interface;
 pub mod driver_solid;
 pub mod elastic;

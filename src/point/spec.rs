@@ -14,6 +14,18 @@
 //!   normal_stresses: [100.0e3, 200.0e3, 400.0e3]
 //!   path: { kind: monotonic, target: 0.06, steps: 300 }   # shear displacement, m
 //! ```
+//!
+//! **Comparison mode**: `interfaces:` (a list of interface laws) instead of `interface:` runs the
+//! same `direct_shear` test with every law, plots one panel per normal stress with one curve per
+//! law, and writes a table of the peak shear stress and of the shear displacements at 50 % and
+//! 95 % of the peak (see [`crate::point::runner::CrossCheckRow`]).
+//!
+//! **Initial state of the solid tests** (spec G7: the densification factor of the rockfill GP
+//! model remembers isotropic consolidation). Every solid test starts from the *virgin* isotropic
+//! state at `initial_pressure` p0 (`init_state(−p0·I)`: no plastic strain, loading surface
+//! through the stress point). The triaxial tests default to p0 = σ3 (virgin isotropic state at
+//! the confining pressure); a p0 different from σ3 is first brought to σ3 by
+//! `consolidation_steps` stress-controlled isotropic steps, which are not part of the output.
 
 use crate::material::{InterfaceParams, SolidParams};
 use schemars::JsonSchema;
@@ -26,10 +38,13 @@ pub struct PointTestFile {
     /// Title of the plots and the summary (default: the file name).
     #[serde(default)]
     pub title: Option<String>,
-    /// Interface or joint law (exactly one of `interface` and `solid`).
+    /// Interface or joint law (exactly one of `interface`, `interfaces` and `solid`).
     #[serde(default)]
     pub interface: Option<InterfaceParams>,
-    /// Solid model (exactly one of `interface` and `solid`).
+    /// Comparison mode: several interface laws run through the same `direct_shear` test.
+    #[serde(default)]
+    pub interfaces: Option<Vec<InterfaceParams>>,
+    /// Solid model (exactly one of `interface`, `interfaces` and `solid`).
     #[serde(default)]
     pub solid: Option<SolidParams>,
     /// The test to run.
@@ -46,8 +61,12 @@ pub enum TestSpec {
     JumpPath(JumpPathTest),
     /// Solid drained triaxial compression (constant lateral stress) at several confining pressures.
     Triaxial(TriaxialTest),
+    /// Solid drained cyclic triaxial test (q cycled between two limits at constant σ3).
+    CyclicTriaxial(CyclicTriaxialTest),
     /// Solid oedometric compression (no lateral strain).
     Oedometer(OedometerTest),
+    /// Solid isotropic compression / unloading through a list of pressures.
+    IsotropicCompression(IsotropicTest),
 }
 
 impl TestSpec {
@@ -57,7 +76,9 @@ impl TestSpec {
             TestSpec::DirectShear(_) => "direct_shear",
             TestSpec::JumpPath(_) => "jump_path",
             TestSpec::Triaxial(_) => "triaxial",
+            TestSpec::CyclicTriaxial(_) => "cyclic_triaxial",
             TestSpec::Oedometer(_) => "oedometer",
+            TestSpec::IsotropicCompression(_) => "isotropic_compression",
         }
     }
 
@@ -109,24 +130,70 @@ pub struct JumpPathTest {
     pub steps_per_segment: usize,
 }
 
-/// Solid drained triaxial test.
+/// Default number of isotropic steps from p0 to σ3 when p0 ≠ σ3.
+pub const DEFAULT_CONSOLIDATION_STEPS: usize = 20;
+
+/// Solid drained triaxial test: lateral stresses held at σ3, axial strain prescribed.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct TriaxialTest {
-    /// Confining pressures σ_3 (Pa, compression positive), one run each; isotropic start.
+    /// Confining pressures σ_3 (Pa, compression positive), one run each.
     pub confining_pressures: Vec<f64>,
-    /// Axial compression strain path ε_a (−, compression positive).
+    /// Pressure p0 of the virgin isotropic start (Pa, compression positive); default σ3 of
+    /// each run. When p0 ≠ σ3 the point is first consolidated isotropically to σ3.
+    #[serde(default)]
+    pub initial_pressure: Option<f64>,
+    /// Isotropic steps from p0 to σ3 (default 20; only used when p0 ≠ σ3).
+    #[serde(default)]
+    pub consolidation_steps: Option<usize>,
+    /// Axial compression strain path ε_a (−, compression positive), from the start of shearing.
     pub path: ScalarPath,
+}
+
+/// Solid drained cyclic triaxial test: σ3 constant, q = σ_a − σ_r stress controlled from 0 to
+/// `q_min`, then `cycles` times `q_min` → `q_max` → `q_min`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct CyclicTriaxialTest {
+    /// Confining pressures σ_3 (Pa, compression positive), one run each.
+    pub confining_pressures: Vec<f64>,
+    /// Pressure p0 of the virgin isotropic start (Pa, compression positive); default σ3.
+    #[serde(default)]
+    pub initial_pressure: Option<f64>,
+    /// Isotropic steps from p0 to σ3 (default 20; only used when p0 ≠ σ3).
+    #[serde(default)]
+    pub consolidation_steps: Option<usize>,
+    /// Lower deviator q_min (Pa, default 0).
+    #[serde(default)]
+    pub q_min: f64,
+    /// Upper deviator q_max (Pa), > q_min.
+    pub q_max: f64,
+    /// Number of load cycles.
+    pub cycles: usize,
+    /// Stress-controlled steps per half cycle (also used for the first ramp 0 → q_min).
+    pub steps_per_half: usize,
 }
 
 /// Solid oedometer test.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct OedometerTest {
-    /// Isotropic pressure at the start (Pa, compression positive).
+    /// Pressure p0 of the virgin isotropic start (Pa, compression positive).
     pub initial_pressure: f64,
     /// Axial compression strain path ε_a (−, compression positive).
     pub path: ScalarPath,
+}
+
+/// Solid isotropic compression: the pressure goes from p0 through `pressures`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct IsotropicTest {
+    /// Pressure p0 of the virgin isotropic start (Pa, compression positive).
+    pub initial_pressure: f64,
+    /// Pressures to go through (Pa, compression positive), e.g. loading then unloading.
+    pub pressures: Vec<f64>,
+    /// Stress-controlled steps per segment.
+    pub steps_per_segment: usize,
 }
 
 /// A path of one scalar (a shear displacement or an axial strain), from 0.
