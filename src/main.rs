@@ -24,6 +24,13 @@ enum Bench {
         #[arg(short = 'o', long = "out", default_value = "out/bench")]
         out: PathBuf,
     },
+    /// Integration-point updates per second of every constitutive model on monotonic and
+    /// cyclic paths (one core; prints a markdown table).
+    Materials {
+        /// Short run (fewer repetitions).
+        #[arg(long)]
+        quick: bool,
+    },
 }
 
 #[derive(Subcommand, Debug)]
@@ -62,8 +69,9 @@ enum Command {
         #[arg(short = 'o', long = "out")]
         out: PathBuf,
     },
-    /// Run material-point tests (triaxial, oedometer, interface direct shear) from a YAML file;
-    /// writes CSV tables and a PNG figure.
+    /// Run material-point tests from a YAML file: drained triaxial (monotonic, cyclic),
+    /// oedometer, isotropic compression, interface direct shear (CNL, CNS, monotonic, cyclic,
+    /// model comparison); writes CSV tables and a PNG figure (`inputs/point/README.md`).
     Point {
         /// Test file (YAML), e.g. `inputs/point/hyperbolic_cnl_monotonic.yaml`.
         test: PathBuf,
@@ -129,6 +137,15 @@ fn main() -> ExitCode {
                 ExitCode::from(2)
             }
         },
+        Command::Bench(Bench::Materials { quick }) => {
+            let rows = cfrd::material::bench::run(quick);
+            println!("{}", cfrd::material::bench::BenchTable(&rows));
+            if rows.iter().any(|r| r.error.is_some()) {
+                ExitCode::from(3)
+            } else {
+                ExitCode::SUCCESS
+            }
+        }
         Command::Bench(Bench::Solver { dofs, out }) => with_mpi(|world| {
             let opts = cfrd::run::RunOptions {
                 scene: None,
