@@ -52,27 +52,20 @@ pub fn any_error<T, E: std::fmt::Display>(
         Err(e) if world.rank() == first => e.to_string().into_bytes(),
         _ => Vec::new(),
     };
-    broadcast_bytes(world, first, &mut msg);
+    broadcast_vec(world, first, &mut msg);
     Err(String::from_utf8_lossy(&msg).into_owned())
 }
 
-/// Broadcasts a byte buffer of any length from `root`.
-pub fn broadcast_bytes(world: &SimpleCommunicator, root: i32, data: &mut Vec<u8>) {
+/// Broadcasts a vector of any length from `root` (the other ranks' contents are replaced).
+pub fn broadcast_vec<T: mpi::datatype::Equivalence + Default + Clone>(
+    world: &SimpleCommunicator,
+    root: i32,
+    data: &mut Vec<T>,
+) {
     let proc = world.process_at_rank(root);
     let mut len = data.len() as u64;
     proc.broadcast_into(&mut len);
-    data.resize(len as usize, 0);
-    if len > 0 {
-        proc.broadcast_into(&mut data[..]);
-    }
-}
-
-/// Broadcasts a `u32` array from `root` (the other ranks' contents are replaced).
-pub fn broadcast_u32(world: &SimpleCommunicator, root: i32, data: &mut Vec<u32>) {
-    let proc = world.process_at_rank(root);
-    let mut len = data.len() as u64;
-    proc.broadcast_into(&mut len);
-    data.resize(len as usize, 0);
+    data.resize(len as usize, T::default());
     if len > 0 {
         proc.broadcast_into(&mut data[..]);
     }

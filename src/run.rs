@@ -6,7 +6,7 @@
 use crate::io::hdf5_out::{strain_output_components, OwnedMesh, ResultsFile, StepInfo};
 use crate::io::summary::{Phase, PhaseTimer, RunSummary};
 use crate::linalg::petsc::Petsc;
-use crate::parallel::{any_error, broadcast_u32, EXIT_INPUT, EXIT_SOLVER};
+use crate::parallel::{any_error, broadcast_vec, EXIT_INPUT, EXIT_SOLVER};
 use crate::scene::Scene;
 use crate::solver::discretization::Discretization;
 use crate::solver::statics::{mesh_cells, LocalResults, SolveReport, StaticProblem};
@@ -72,7 +72,7 @@ pub fn partition_scene(world: &SimpleCommunicator, scene: &Scene) -> Result<Part
         Ok(Vec::new())
     };
     let mut part = any_error(world, local).map_err(input)?;
-    broadcast_u32(world, 0, &mut part);
+    broadcast_vec(world, 0, &mut part);
     Ok(Partition::new(&cells, n_nodes, nparts, part))
 }
 

@@ -25,7 +25,7 @@ use mpi::topology::SimpleCommunicator;
 use mpi::traits::{Communicator, CommunicatorCollectives};
 use serde::{Deserialize, Serialize};
 
-use super::error::IoError;
+use super::error::{write_atomic, IoError};
 
 /// The phases timed in a run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -238,23 +238,7 @@ impl RunSummary {
 
     /// Writes the JSON to `path` through a temporary file renamed into place. Call on rank 0.
     pub fn write_json(&self, path: &Path) -> Result<(), IoError> {
-        let name = path
-            .file_name()
-            .ok_or_else(|| IoError::Usage(format!("{}: not a file path", path.display())))?;
-        let temp = path.with_file_name(format!(
-            ".{}.partial-{}",
-            name.to_string_lossy(),
-            std::process::id()
-        ));
-        let io_err = |source| IoError::File {
-            path: path.to_path_buf(),
-            source,
-        };
-        std::fs::write(&temp, self.to_json() + "\n").map_err(io_err)?;
-        std::fs::rename(&temp, path).map_err(|e| {
-            let _ = std::fs::remove_file(&temp);
-            io_err(e)
-        })
+        write_atomic(path, (self.to_json() + "\n").as_bytes())
     }
 }
 

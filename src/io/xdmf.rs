@@ -266,24 +266,7 @@ pub fn render(doc: &XdmfDocument) -> String {
 /// Writes the document to `path` through a temporary file in the same directory, renamed into
 /// place, so an existing XDMF file is replaced only by a complete one. Call on one rank only.
 pub fn write(doc: &XdmfDocument, path: &Path) -> Result<(), IoError> {
-    let text = render(doc);
-    let name = path
-        .file_name()
-        .ok_or_else(|| IoError::Usage(format!("{}: not a file path", path.display())))?;
-    let temp = path.with_file_name(format!(
-        ".{}.partial-{}",
-        name.to_string_lossy(),
-        std::process::id()
-    ));
-    let io_err = |source| IoError::File {
-        path: path.to_path_buf(),
-        source,
-    };
-    std::fs::write(&temp, text).map_err(io_err)?;
-    std::fs::rename(&temp, path).map_err(|e| {
-        let _ = std::fs::remove_file(&temp);
-        io_err(e)
-    })
+    super::error::write_atomic(path, render(doc).as_bytes())
 }
 
 /// An element found by [`parse_for_tests`].

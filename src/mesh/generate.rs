@@ -18,8 +18,9 @@ const FACE_XMAX: u8 = 3;
 const FACE_YMAX: u8 = 4;
 const FACE_ZMAX: u8 = 5;
 
-/// Parameters of [`box_mesh`].
-#[derive(Debug, Clone, PartialEq)]
+/// Parameters of [`box_mesh`] (also the scene's `mesh.box`; omitted keys take the defaults).
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields, default)]
 pub struct BoxSpec {
     /// Corner with the smallest coordinates (m).
     pub origin: [f64; 3],
@@ -65,7 +66,8 @@ impl Default for BoxSpec {
 /// ```
 /// The dam axis runs along y from 0 to `length`. Every horizontal row of elements has `nx`
 /// elements across the section, so element widths shrink linearly from base to crest.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields)]
 pub struct DamSpec {
     /// Dam height `H` (m).
     pub height: f64,
@@ -79,8 +81,13 @@ pub struct DamSpec {
     pub length: f64,
     /// Elements across the section (x), along the axis (y) and over the height (z).
     pub divisions: [usize; 3],
-    /// Number of horizontal element blocks `layer_1 … layer_k`, `1 ≤ k ≤ nz`.
+    /// Number of horizontal element blocks `layer_1 … layer_k`, `1 ≤ k ≤ nz` (default 1).
+    #[serde(default = "one_layer")]
     pub layers: usize,
+}
+
+fn one_layer() -> usize {
+    1
 }
 
 impl DamSpec {

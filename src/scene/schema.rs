@@ -3,6 +3,7 @@
 //! scene files and this documentation cannot fall out of date.
 
 use crate::material::SolidParams;
+pub use crate::mesh::generate::{BoxSpec, DamSpec};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -59,67 +60,14 @@ pub struct MeshSource {
     /// A Gmsh MSH 4.1 or 2.2 ASCII file, relative to the scene file.
     #[serde(default)]
     pub file: Option<PathBuf>,
-    /// A structured box of hexahedra.
+    /// A structured box of hexahedra: blocks `layer_1..layer_k` from the bottom up, node and
+    /// face sets `xmin, xmax, ymin, ymax, zmin, zmax`.
     #[serde(default, rename = "box")]
     pub box_: Option<BoxSpec>,
-    /// A dam-like trapezoidal section extruded along the dam axis.
+    /// A dam-like trapezoidal section extruded along the dam axis: blocks `layer_1..layer_k`;
+    /// node and face sets `upstream`, `downstream`, `base` (z = 0), `crest`, `ymin`, `ymax`.
     #[serde(default)]
     pub dam: Option<DamSpec>,
-}
-
-/// Structured box generator: blocks `layer_1..layer_k` from the bottom up, node sets and face
-/// sets `xmin, xmax, ymin, ymax, zmin, zmax`.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields)]
-pub struct BoxSpec {
-    /// Lower corner (m).
-    #[serde(default)]
-    pub origin: [f64; 3],
-    /// Edge lengths (m).
-    pub size: [f64; 3],
-    /// Divisions along x, y, z.
-    pub divisions: [u32; 3],
-    /// Number of horizontal layers (blocks `layer_1` ... from the bottom); default 1.
-    #[serde(default = "one")]
-    pub layers: u32,
-    /// Random node displacement as a fraction of the cell size (0 to 0.2), for distorted-mesh
-    /// (patch) tests; boundary faces stay plane.
-    #[serde(default)]
-    pub jitter: f64,
-    /// Seed of the jitter's pseudo-random sequence.
-    #[serde(default = "one_u64")]
-    pub seed: u64,
-}
-
-fn one_u64() -> u64 {
-    1
-}
-
-/// Dam-like mesh generator: blocks `layer_1..layer_k` from the bottom up; node and face sets
-/// `upstream`, `downstream`, `base` (z = 0), `crest`, `ymin` and `ymax` (the two ends of the
-/// dam axis).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields)]
-pub struct DamSpec {
-    /// Height (m).
-    pub height: f64,
-    /// Crest width (m).
-    pub crest_width: f64,
-    /// Upstream slope 1:m (horizontal per vertical).
-    pub upstream_slope: f64,
-    /// Downstream slope 1:m.
-    pub downstream_slope: f64,
-    /// Length along the dam axis (m).
-    pub length: f64,
-    /// Divisions across the stream (x), along the axis (y) and vertically (z).
-    pub divisions: [u32; 3],
-    /// Number of horizontal layers (blocks).
-    #[serde(default = "one")]
-    pub layers: u32,
-}
-
-fn one() -> u32 {
-    1
 }
 
 /// Material assignment of a block.
@@ -272,6 +220,9 @@ fn max_it() -> u32 {
 }
 fn newton_tol() -> f64 {
     1e-8
+}
+fn one() -> u32 {
+    1
 }
 fn newton_max() -> u32 {
     25

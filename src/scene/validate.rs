@@ -360,29 +360,8 @@ fn build_mesh(src: &MeshSource, base: &Path) -> Result<Mesh, String> {
             let path: PathBuf = if p.is_absolute() { p.clone() } else { base.join(p) };
             crate::mesh::gmsh::read_gmsh(&path).map_err(|e| e.to_string())?
         }
-        (None, Some(b), None) => {
-            let spec = generate::BoxSpec {
-                origin: b.origin,
-                size: b.size,
-                divisions: b.divisions.map(|d| d as usize),
-                layers: b.layers.max(1) as usize,
-                jitter: b.jitter,
-                seed: b.seed,
-            };
-            generate::box_mesh(&spec).map_err(|e| e.to_string())?
-        }
-        (None, None, Some(d)) => {
-            let spec = generate::DamSpec {
-                height: d.height,
-                crest_width: d.crest_width,
-                upstream_slope: d.upstream_slope,
-                downstream_slope: d.downstream_slope,
-                length: d.length,
-                divisions: d.divisions.map(|v| v as usize),
-                layers: d.layers.max(1) as usize,
-            };
-            generate::dam_mesh(&spec).map_err(|e| e.to_string())?
-        }
+        (None, Some(b), None) => generate::box_mesh(b).map_err(|e| e.to_string())?,
+        (None, None, Some(d)) => generate::dam_mesh(d).map_err(|e| e.to_string())?,
         _ => return Err("give exactly one of mesh.file, mesh.box or mesh.dam".into()),
     };
     mesh.validate().map_err(|e| e.to_string())?;
