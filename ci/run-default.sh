@@ -7,4 +7,3 @@ source ci/env.sh
 cargo build --release --locked
 out=${1:-out/default}
 mpirun -n 2 target/release/cfrd run -o "$out"
-echo "results: $out (open $out/results.xdmf in ParaView; run summary: $out/summary.json)"

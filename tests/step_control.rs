@@ -98,7 +98,7 @@ fn a_step_that_cannot_be_completed_is_reported() {
     let msg = text(&o);
     assert_eq!(o.status.code(), Some(3), "{msg}");
     assert!(
-        msg.contains("failed after 2 cut-back(s)") && msg.contains("last converged state is λ = 0.0000"),
+        msg.contains("failed after 2 cut-back(s)") && msg.contains("last converged state is λ = 0.000000"),
         "{msg}"
     );
     assert!(!msg.contains("panicked"), "{msg}");

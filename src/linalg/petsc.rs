@@ -417,13 +417,21 @@ pub struct Ksp {
 }
 
 impl Ksp {
-    /// A solver with cfrd's defaults (CG + GAMG, relative tolerance `rtol`), then overridden by
+    /// A solver with cfrd's defaults (CG + GAMG for a symmetric operator, GMRES + GAMG
+    /// otherwise; relative tolerance `rtol` on the unpreconditioned residual), then overridden by
     /// PETSc options (`-ksp_type`, `-pc_type`, ... from the scene and the command line).
-    pub fn new(petsc: &Petsc, rtol: f64, max_it: u32) -> Result<Ksp, PetscError> {
+    pub fn new(petsc: &Petsc, rtol: f64, max_it: u32, symmetric: bool) -> Result<Ksp, PetscError> {
         let mut raw: p::KSP = null_mut();
         call!(KSPCreate(petsc.comm, &mut raw))?;
         let k = Ksp { raw };
-        call!(KSPSetType(k.raw, p::KSPCG.as_ptr() as *const c_char))?;
+        if symmetric {
+            call!(KSPSetType(k.raw, p::KSPCG.as_ptr() as *const c_char))?;
+        } else {
+            call!(KSPSetType(k.raw, p::KSPGMRES.as_ptr() as *const c_char))?;
+            call!(KSPGMRESSetRestart(k.raw, 200))?;
+            // GMRES cannot use the unpreconditioned norm with left preconditioning
+            call!(KSPSetPCSide(k.raw, p::PC_RIGHT))?;
+        }
         let mut pc: p::PC = null_mut();
         call!(KSPGetPC(k.raw, &mut pc))?;
         call!(PCSetType(pc, p::PCGAMG.as_ptr() as *const c_char))?;

@@ -38,7 +38,8 @@
 use super::gp_integrator::{
     integrate, Branch, GpModelFunctions, GpPoint, PlasticData, StageIncrement, SubstepOptions,
 };
-use super::{SolidModel, SolidUpdate};
+use super::interface_gp::TangentChoice;
+use super::{SolidModel, SolidUpdate, TangentKind};
 use crate::error::{require_non_negative, require_positive, require_range, MaterialError, ParamError};
 use crate::material::elastic::bulk_shear_stiffness;
 use crate::tensor::{Matrix6, Strain6, Stress6, Tangent6, Vector6};
@@ -163,6 +164,16 @@ pub struct RockfillGpParams {
     /// Substepping options (spec §8.2).
     #[serde(default)]
     pub integration: SubstepOptions,
+    /// Tangent returned to Newton (spec §8.5): `continuum` D^ep at the end state, or
+    /// `numerical`, the forward-difference consistent tangent of the whole step (6 extra
+    /// integrations). Default `numerical`: load steps of a dam strain the fill by 10⁻³ from
+    /// near p_min, where the continuum tangent makes Newton converge only linearly.
+    #[serde(default = "default_numerical")]
+    pub tangent: TangentChoice,
+}
+
+fn default_numerical() -> TangentChoice {
+    TangentChoice::Numerical
 }
 
 impl Default for RockfillGpParams {
@@ -195,6 +206,7 @@ impl Default for RockfillGpParams {
             softening_guard: true,
             xi_rule: XiRule::default(),
             integration: SubstepOptions::default(),
+            tangent: default_numerical(),
         }
     }
 }
@@ -743,6 +755,33 @@ pub fn deviatoric_invariant(eps: &Vector6) -> f64 {
     (2.0 / 3.0 * ee).sqrt()
 }
 
+impl RockfillGp {
+    /// Numerical consistent tangent (spec §8.5): forward differences of the stress with
+    /// respect to the strain increment, each re-integrated from the committed state,
+    ///
+    /// ```text
+    /// D_alg[:, j] = (σ(Δε + h·e_j) − σ(Δε))/h,   h = 10⁻⁷·max(‖Δε‖, 10⁻⁶)
+    /// ```
+    fn numerical_tangent(
+        &self,
+        prev: &RockfillGpState,
+        d_eps: &Strain6,
+        base: &RockfillGpState,
+    ) -> Result<Tangent6, MaterialError> {
+        let h = 1e-7 * d_eps.0.norm().max(1e-6);
+        let start = self.to_point(prev);
+        let mut k = Matrix6::zeros();
+        for j in 0..6 {
+            let mut de = d_eps.0;
+            de[j] += h;
+            let res = integrate(self, &start, &de, prev.branch, &self.params.integration)?;
+            let s = Self::from_point(&res.point, res.last_branch).stress.0;
+            k.set_column(j, &((s - base.stress.0) / h));
+        }
+        Ok(Tangent6(k))
+    }
+}
+
 impl SolidModel for RockfillGp {
     type State = RockfillGpState;
 
@@ -786,10 +825,17 @@ impl SolidModel for RockfillGp {
         } else {
             Self::from_point(&res.point, res.last_branch)
         };
+        let (tangent, kind) = match self.params.tangent {
+            TangentChoice::Numerical if res.substeps > 0 => (
+                self.numerical_tangent(prev, d_eps, &state)?,
+                TangentKind::Consistent,
+            ),
+            _ => (Tangent6(res.tangent * 1.0e3), res.kind),
+        };
         Ok(SolidUpdate {
             state,
-            tangent: Tangent6(res.tangent * 1.0e3),
-            kind: res.kind,
+            tangent,
+            kind,
             substeps: res.substeps.max(1),
         })
     }

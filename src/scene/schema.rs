@@ -210,6 +210,10 @@ pub struct SolverSpec {
     /// PETSc options, e.g. `-ksp_type gmres -pc_type hypre`; command-line options override them.
     #[serde(default)]
     pub petsc_options: String,
+    /// Print every Newton iteration's relative residual and the reason of every cut-back
+    /// (rank 0, to standard error). Default false.
+    #[serde(default)]
+    pub monitor: bool,
 }
 
 fn rtol() -> f64 {
@@ -241,6 +245,7 @@ impl Default for SolverSpec {
             load_steps: 1,
             max_cutbacks: max_cutbacks(),
             petsc_options: String::new(),
+            monitor: false,
         }
     }
 }

@@ -93,6 +93,11 @@ impl SolidBlock {
         with_states!(self, ms => evaluate_element(ms, e, geo, d_u, want_k))
     }
 
+    /// Whether the model's tangent is symmetric (CG needs it; otherwise GMRES is used).
+    pub fn symmetric_tangent(&self) -> bool {
+        with_states!(self, ms => ms.model.symmetric_tangent())
+    }
+
     /// Mean committed stress over the Gauss points of element `e` (block-local index).
     pub fn mean_stress(&self, e: usize) -> Stress6 {
         with_states!(self, ms => mean_committed_stress(ms, e))

@@ -17,6 +17,7 @@ use crate::scene::schema::PlacedNodes;
 use crate::scene::{Scene, Term};
 use crate::tensor::{Strain6, Stress6};
 use mpi::topology::SimpleCommunicator;
+use mpi::traits::Communicator;
 use partition::Cells;
 use std::time::Instant;
 
@@ -61,8 +62,8 @@ pub enum SolveError {
     Collective(String),
     /// A load step could not be completed even after cutting it back.
     #[error(
-        "load step from λ = {from:.4} to λ = {to:.4} failed after {cutbacks} cut-back(s); \
-         the last converged state is λ = {from:.4}: {source}"
+        "load step from λ = {from:.6} to λ = {to:.6} failed after {cutbacks} cut-back(s); \
+         the last converged state is λ = {from:.6}: {source}"
     )]
     Step {
         /// Last converged load factor.
@@ -250,7 +251,14 @@ impl<'a> StaticProblem<'a> {
         u_committed.set_all(0.0)?;
         let gather = Gather::new(&u, &disc.local_dofs)?;
         let gather_committed = Gather::new(&u, &disc.local_dofs)?;
-        let mut ksp = Ksp::new(petsc, scene.file.solver.rtol, scene.file.solver.max_iterations)?;
+        // the non-associated GP models have non-symmetric tangents: CG only when all are symmetric
+        let symmetric = blocks.iter().all(SolidBlock::symmetric_tangent);
+        let mut ksp = Ksp::new(
+            petsc,
+            scene.file.solver.rtol,
+            scene.file.solver.max_iterations,
+            symmetric,
+        )?;
         // options (scene and command line) are applied here, so a bad one is an input error;
         // PETSc rebuilds the preconditioner whenever the matrix has changed
         ksp.set_operator(&k)?;
@@ -529,6 +537,9 @@ impl<'a> StaticProblem<'a> {
                     on_step(lambda, report);
                 }
                 Err(e) if e.recoverable() && cuts < max_cutbacks => {
+                    if self.scene.file.solver.monitor && SimpleCommunicator::world().rank() == 0 {
+                        eprintln!("step to λ = {next:.6} cut back: {e}");
+                    }
                     cuts += 1;
                     report.cutbacks += 1;
                     d_lambda *= 0.5;
@@ -608,6 +619,9 @@ impl<'a> StaticProblem<'a> {
             let ref_norm = f_ext.norm2()?.max(f_int.norm2()?).max(1e-300);
             let rel = r_norm / ref_norm;
             report.residuals.push(rel);
+            if opts.monitor && world.rank() == 0 {
+                eprintln!("newton λ = {lambda:.6} iteration {it}: relative residual {rel:.3e}");
+            }
             if !rel.is_finite() {
                 return Err(SolveError::Newton {
                     iterations: it,
