@@ -775,6 +775,74 @@ mod tests {
         assert_eq!(back.last_branch, Branch::Unloading);
     }
 
+    /// The toy model with a stop when σ reaches `stop_at` (linear interpolation in the substep).
+    struct Stopper(Toy, f64);
+
+    impl GpModelFunctions<1, 1> for Stopper {
+        type Memory = u32;
+        fn elastic_matrix(&self, p: &GpPoint<1, 1, u32>) -> Matrix1<f64> {
+            self.0.elastic_matrix(p)
+        }
+        fn plastic_data(
+            &self,
+            p: &GpPoint<1, 1, u32>,
+            branch: Branch,
+            d: &Vector1<f64>,
+        ) -> Result<PlasticData<1>, MaterialError> {
+            self.0.plastic_data(p, branch, d)
+        }
+        fn kappa_increment(&self, p: &GpPoint<1, 1, u32>, s: &StageIncrement<'_, 1>) -> Vector1<f64> {
+            self.0.kappa_increment(p, s)
+        }
+        fn after_accept(&self, p: &mut GpPoint<1, 1, u32>, b: Branch) -> Result<Branch, MaterialError> {
+            self.0.after_accept(p, b)
+        }
+        fn error_scales(&self) -> (f64, Vector1<f64>) {
+            self.0.error_scales()
+        }
+        fn stop_in_substep(
+            &self,
+            before: &GpPoint<1, 1, u32>,
+            after: &mut GpPoint<1, 1, u32>,
+        ) -> Option<f64> {
+            if after.sigma[0] < self.1 {
+                return None;
+            }
+            let f = (self.1 - before.sigma[0]) / (after.sigma[0] - before.sigma[0]);
+            after.sigma[0] = self.1;
+            after.kappa = before.kappa + (after.kappa - before.kappa) * f;
+            Some(f)
+        }
+    }
+
+    #[test]
+    fn a_stop_inside_a_substep_reports_the_reached_fraction() {
+        // Loading from σ = 0.1: σ = 0.1 + E·H/(E+H)·ε = 0.1 + 20·ε reaches 0.2 at ε = 0.005.
+        let m = Stopper(Toy { e: 100.0, h: 25.0 }, 0.2);
+        let start = GpPoint {
+            sigma: Vector1::new(0.1),
+            kappa: Vector1::new(0.0),
+            memory: 0_u32,
+        };
+        let opts = SubstepOptions::default();
+        let res = integrate(&m, &start, &Vector1::new(0.01), Branch::Loading, &opts).expect("stops");
+        assert!((res.reached - 0.5).abs() < 1e-12, "reached {}", res.reached);
+        assert_eq!(res.point.sigma[0], 0.2);
+        // κ = ε^p = 0.8·(ε − 0) on the plastic branch: 0.004 at the stop.
+        assert!(
+            (res.point.kappa[0] - 0.004).abs() < 1e-14,
+            "{}",
+            res.point.kappa[0]
+        );
+        assert_eq!(
+            res.point.memory,
+            res.substeps - 1,
+            "after_accept skipped at the stop"
+        );
+        let full = integrate(&m.0, &start, &Vector1::new(0.01), Branch::Loading, &opts).expect("full");
+        assert_eq!((full.reached, full.rejected), (1.0, 0));
+    }
+
     #[test]
     fn guard_bounds_the_denominator() {
         let dd_e = Matrix1::new(100.0);
@@ -806,6 +874,8 @@ mod tests {
             "integration.stol"
         );
         assert!(serde_json::from_str::<SubstepOptions>(r#"{"stl": 1e-5}"#).is_err());
+        let alias: SubstepOptions = serde_json::from_str(r#"{"nmax": 7}"#).expect("alias");
+        assert_eq!(alias.max_substeps, 7);
     }
 
     /// A 3-component model (the interface dimension): D^e = E·I, n = n_g = σ/|σ| (radial),
