@@ -25,11 +25,12 @@
 //! * After an accepted substep η_max and σ_c,max are updated (spec G7).
 
 use super::gp_integrator::{cosine, Branch, GpModelFunctions, GpPoint, PlasticData, StageIncrement};
-use super::interface_gp::{FhMode, GpBranch, GpInterface, GpInterfaceState, PeakForm};
+use super::interface_gp::{ElasticVoidRatio, FhMode, GpBranch, GpInterface, GpInterfaceState, PeakForm};
 use crate::error::MaterialError;
 use nalgebra::{Matrix3, SVector, Vector2, Vector3};
 
-/// Floor of the void ratio in the elastic factor (1+e)/e (caps it at 101) (spec tag INF).
+/// Floor of the void ratio in the elastic factor (1+e)/e under `elastic_void_ratio = current`
+/// (caps it at 101), and of |e| in the error measure (spec tag INF).
 pub const VOID_RATIO_FLOOR: f64 = 0.01;
 /// Cap of √(ρ_max/ρ) (spec (I12): ρ ≥ 0.01·ρ_max).
 pub const MAPPING_RATIO_CAP: f64 = 10.0;
@@ -234,17 +235,22 @@ impl PointFunctions {
 }
 
 impl GpInterface {
-    /// Elastic moduli (D_s, D_n) at a state, Pa per unit strain (spec (I3), (I4)):
+    /// Elastic moduli (D_s, D_n) at a state with void ratio `void_ratio`, Pa per unit strain
+    /// (spec (I3), (I4)):
     ///
     /// ```text
-    /// D_s = D_s0·((1+e)/e)·[(σ̂_n/p_a)² + (τ/p_a)²]^0.5,   D_n = (D_n0/D_s0)·D_s,   σ̂_n = max(σ_n, σ_min)
+    /// D_s = D_s0·((1+ê)/ê)·[(σ̂_n/p_a)² + (τ/p_a)²]^0.5,   D_n = (D_n0/D_s0)·D_s,   σ̂_n = max(σ_n, σ_min)
     /// ```
     ///
-    /// times the stiffness-basis factor (t under `displacement`, 1 under `strain`).
+    /// times the stiffness-basis factor (t under `displacement`, 1 under `strain`), with
+    /// ê = e0 under `elastic_void_ratio = initial` and ê = max(e, 0.01) under `current`.
     pub fn elastic_moduli(&self, sigma_n: f64, tau: f64, void_ratio: f64) -> (f64, f64) {
         let p = &self.params;
         let sig = sigma_n.max(p.sigma_min);
-        let e = void_ratio.max(VOID_RATIO_FLOOR);
+        let e = match p.elastic_void_ratio {
+            ElasticVoidRatio::Initial => p.e0,
+            ElasticVoidRatio::Current => void_ratio.max(VOID_RATIO_FLOOR),
+        };
         let ds =
             self.basis_factor * p.ds0 * (1.0 + e) / e * ((sig / p.pa).powi(2) + (tau / p.pa).powi(2)).sqrt();
         (ds, ds * p.dn0 / p.ds0)
