@@ -10,8 +10,9 @@
 //! (elastic matrix, loading direction, flow direction, plastic modulus, internal-variable
 //! rates, post-step rules). It works in any dimension `N` (6 for a solid point in Voigt form,
 //! 3 for an interface point) and for any number `K` of rate-integrated internal variables.
-//! The rockfill model ([`crate::material::rockfill_gp`]) is the first user; the GP interface
-//! model can use it unchanged.
+//! Users: the rockfill model ([`crate::material::rockfill_gp`], N = 6) and the GP interface
+//! ([`crate::material::interface_gp`], N = 3; it overrides the branch decision for its
+//! reversal rule, the error measure, and stops inside a substep when it opens).
 //!
 //! ```text
 //! input : committed point (σ0, κ0, memory0), total increment Δε
@@ -27,7 +28,9 @@
 //!     stage 2 at point + stage 1  → (Δσ2, Δκ2)       # same branch br
 //!     σ̃ = σ + ½(Δσ1+Δσ2);  κ̃ = κ + ½(Δκ1+Δκ2)
 //!     R = max(‖Δσ2−Δσ1‖/(2‖σ̃‖+σ_scale), max_j |Δκ2_j−Δκ1_j|/(2|κ̃_j|+κ_scale_j)), R ≥ EPS
-//!     R ≤ STOL: accept, after_accept(point), T += dT, q = min(0.9√(STOL/R), 1.1)
+//!     R = substep_error(...)                       # the line above is the default
+//!     R ≤ STOL: accept; stop_in_substep(start, new) → return at T + f·dT if it says so;
+//!               after_accept(point), T += dT, q = min(0.9√(STOL/R), 1.1)
 //!     else    : reject, q = max(0.9√(STOL/R), 0.1); a rejection at DT_MIN is a failure
 //!     dT = min(max(q·dT, DT_MIN), 1 − T)
 //! ```
@@ -78,8 +81,12 @@
 //!   and the "elastic" threshold [`H_ELASTIC`] are applied by the integrator.
 //! * `kappa_increment` receives dλ with its sign (negative on unloading: take `abs()` for
 //!   accumulated quantities) and is also called on elastic stages.
-//! * `after_accept` is the only place for discontinuous updates (cut-offs, opening, memory
+//! * `after_accept` is the only place for discontinuous updates (cut-offs, memory
 //!   surfaces); it may return [`Branch::Elastic`] to make the tangent elastic.
+//! * `stop_in_substep` ends the integration inside an accepted substep (the interface opening,
+//!   spec §2.12): the model interpolates the point, the result reports the fraction reached.
+//! * `substep_error` replaces the componentwise error measure when the internal variables
+//!   need a joint norm or a state-dependent scale.
 //! * `error_scales` gives absolute floors: the stress floor in model units (p_a or σ_min),
 //!   one floor per κ entry (`f64::INFINITY` excludes an entry).
 //!
@@ -116,8 +123,10 @@ pub struct SubstepOptions {
     pub dt_min: f64,
     /// Floor EPS of the error measure R (default 1e-12).
     pub eps: f64,
-    /// Largest number of substep attempts (accepted + rejected) in one step (default 10000).
-    pub nmax: u32,
+    /// Largest number of substep attempts (accepted + rejected) in one step, NMAX (default
+    /// 10000). Input key `max_substeps`; `nmax` is accepted as an alias.
+    #[serde(alias = "nmax")]
+    pub max_substeps: u32,
     /// Relative tolerance tolN of the branch test nᵀdσ^e ≷ ±tolN·|n||dσ^e| (default 1e-6).
     pub tol_n: f64,
 }
@@ -128,7 +137,7 @@ impl Default for SubstepOptions {
             stol: 1.0e-4,
             dt_min: 1.0e-6,
             eps: 1.0e-12,
-            nmax: 10_000,
+            max_substeps: 10_000,
             tol_n: 1.0e-6,
         }
     }
@@ -143,8 +152,11 @@ impl SubstepOptions {
         require_range(&format!("{prefix}dt_min"), self.dt_min, 1.0e-15, 0.5)?;
         require_non_negative(&format!("{prefix}eps"), self.eps)?;
         require_non_negative(&format!("{prefix}tol_n"), self.tol_n)?;
-        if self.nmax == 0 {
-            return Err(ParamError::new(format!("{prefix}nmax"), "must be at least 1"));
+        if self.max_substeps == 0 {
+            return Err(ParamError::new(
+                format!("{prefix}max_substeps"),
+                "must be at least 1",
+            ));
         }
         Ok(())
     }
@@ -299,6 +311,47 @@ pub trait GpModelFunctions<const N: usize, const K: usize> {
     /// the rockfill, σ_min for the interface) and one scale per internal variable
     /// (`f64::INFINITY` leaves a variable out of the error measure).
     fn error_scales(&self) -> (f64, SVector<f64, K>);
+
+    /// Relative local error R of a substep from its two Euler stages (spec §8.2), at the new
+    /// point (σ̃, κ̃) = start + ½(stage 1 + stage 2). The default is the spec's measure with
+    /// [`stress_norm`](Self::stress_norm) and [`error_scales`](Self::error_scales):
+    ///
+    /// ```text
+    /// R = max( ‖Δσ2−Δσ1‖ / (2‖σ̃‖ + σ_scale),  max_j |Δκ2_j−Δκ1_j| / (2|κ̃_j| + κ_scale_j) )
+    /// ```
+    ///
+    /// A model whose internal variables need a joint measure (e.g. a vector norm, or a scale
+    /// that depends on the state) overrides it. The integrator floors R at EPS.
+    fn substep_error(
+        &self,
+        new_point: (&SVector<f64, N>, &SVector<f64, K>),
+        stage1: (&SVector<f64, N>, &SVector<f64, K>),
+        stage2: (&SVector<f64, N>, &SVector<f64, K>),
+    ) -> f64 {
+        let (sig_scale, kappa_scale) = self.error_scales();
+        let (sigma, kappa) = new_point;
+        let mut err = self.stress_norm(&(stage2.0 - stage1.0)) / (2.0 * self.stress_norm(sigma) + sig_scale);
+        for j in 0..K {
+            err = err.max((stage2.1[j] - stage1.1[j]).abs() / (2.0 * kappa[j].abs() + kappa_scale[j]));
+        }
+        err
+    }
+
+    /// Stop test of an accepted substep from `before` (the substep start, after
+    /// [`begin_substep`](Self::begin_substep)) to `after` (before
+    /// [`after_accept`](Self::after_accept)). Returning `Some(f)` ends the integration inside
+    /// this substep at the fraction `f` ∈ [0, 1] of it, at the point the model wrote into
+    /// `after` (e.g. the interface opens at σ_n = σ_open, spec §2.12);
+    /// [`IntegrationResult::reached`] then reports the fraction of the step integrated and
+    /// `after_accept` is not called. The default never stops.
+    fn stop_in_substep(
+        &self,
+        before: &GpPoint<N, K, Self::Memory>,
+        after: &mut GpPoint<N, K, Self::Memory>,
+    ) -> Option<f64> {
+        let _ = (before, after);
+        None
+    }
 }
 
 /// Outcome of [`integrate`].
@@ -316,6 +369,12 @@ pub struct IntegrationResult<const N: usize, const K: usize, M> {
     pub substeps: u32,
     /// Number of rejected substeps.
     pub rejected: u32,
+    /// Fraction of the step increment integrated: 1 unless
+    /// [`GpModelFunctions::stop_in_substep`] ended the integration early.
+    pub reached: f64,
+    /// Strain increment dT·Δε of the last accepted substep (the step increment when none was
+    /// taken); the tangent was evaluated with it.
+    pub last_d_eps: SVector<f64, N>,
 }
 
 /// Cosine nᵀv/(|n||v|) of two vectors, 0 when either vanishes.
@@ -501,9 +560,10 @@ where
             last_branch,
             substeps: 0,
             rejected: 0,
+            reached: 1.0,
+            last_d_eps: *d_eps,
         });
     }
-    let (sig_scale, kappa_scale) = model.error_scales();
     let mut point = start.clone();
     let mut t = 0.0_f64;
     // Error-controlled substep size, and a shorter limit set by a detected branch change.
@@ -514,10 +574,10 @@ where
     let mut branch_out = last_branch;
     let mut last_d_eps = *d_eps;
     while 1.0 - t > 1.0e-15 {
-        if accepted + rejected >= opts.nmax {
+        if accepted + rejected >= opts.max_substeps {
             return Err(MaterialError::new(format!(
                 "GP substepping: more than NMAX = {} substep attempts (T = {t:.3e})",
-                opts.nmax
+                opts.max_substeps
             )));
         }
         let dt = dt_err.min(dt_limit.unwrap_or(1.0)).max(opts.dt_min).min(1.0 - t);
@@ -555,10 +615,7 @@ where
         let (ds2, dk2) = stage(model, &predicted, branch, &de, &dd_e_pred)?;
         let new_sigma = trial.sigma + (ds1 + ds2) * 0.5;
         let new_kappa = trial.kappa + (dk1 + dk2) * 0.5;
-        let mut err = model.stress_norm(&(ds2 - ds1)) / (2.0 * model.stress_norm(&new_sigma) + sig_scale);
-        for j in 0..K {
-            err = err.max((dk2[j] - dk1[j]).abs() / (2.0 * new_kappa[j].abs() + kappa_scale[j]));
-        }
+        let err = model.substep_error((&new_sigma, &new_kappa), (&ds1, &dk1), (&ds2, &dk2));
         let r = if err.is_finite() {
             err.max(opts.eps)
         } else {
@@ -566,15 +623,35 @@ where
         };
         let q_raw = 0.9 * (opts.stol / r).sqrt();
         if r <= opts.stol {
-            trial.sigma = new_sigma;
-            trial.kappa = new_kappa;
-            let recorded = model.after_accept(&mut trial, branch)?;
-            if !(trial.sigma.iter().all(|x| x.is_finite()) && trial.kappa.iter().all(|x| x.is_finite())) {
+            // The predicted point carries the substep's memory; it becomes the new point.
+            let mut next = predicted;
+            next.sigma = new_sigma;
+            next.kappa = new_kappa;
+            if let Some(fraction) = model.stop_in_substep(&trial, &mut next) {
+                if !is_finite_point(&next) {
+                    return Err(MaterialError::new(
+                        "GP substepping: non-finite state at a stop inside a substep",
+                    ));
+                }
+                let (tangent, kind) = continuum_tangent(model, &next, branch, &de)?;
+                return Ok(IntegrationResult {
+                    point: next,
+                    tangent,
+                    kind,
+                    last_branch: branch,
+                    substeps: accepted + 1,
+                    rejected,
+                    reached: (t + fraction.clamp(0.0, 1.0) * dt).min(1.0),
+                    last_d_eps: de,
+                });
+            }
+            let recorded = model.after_accept(&mut next, branch)?;
+            if !is_finite_point(&next) {
                 return Err(MaterialError::new(
                     "GP substepping: non-finite state after an accepted substep",
                 ));
             }
-            point = trial;
+            point = next;
             branch_out = recorded;
             last_d_eps = de;
             accepted += 1;
@@ -608,7 +685,14 @@ where
         last_branch: branch_out,
         substeps: accepted,
         rejected,
+        reached: 1.0,
+        last_d_eps,
     })
+}
+
+/// True when the stress and the internal variables of a point are finite.
+fn is_finite_point<const N: usize, const K: usize, M>(p: &GpPoint<N, K, M>) -> bool {
+    p.sigma.iter().all(|x| x.is_finite()) && p.kappa.iter().all(|x| x.is_finite())
 }
 
 #[cfg(test)]
@@ -691,6 +775,74 @@ mod tests {
         assert_eq!(back.last_branch, Branch::Unloading);
     }
 
+    /// The toy model with a stop when σ reaches `stop_at` (linear interpolation in the substep).
+    struct Stopper(Toy, f64);
+
+    impl GpModelFunctions<1, 1> for Stopper {
+        type Memory = u32;
+        fn elastic_matrix(&self, p: &GpPoint<1, 1, u32>) -> Matrix1<f64> {
+            self.0.elastic_matrix(p)
+        }
+        fn plastic_data(
+            &self,
+            p: &GpPoint<1, 1, u32>,
+            branch: Branch,
+            d: &Vector1<f64>,
+        ) -> Result<PlasticData<1>, MaterialError> {
+            self.0.plastic_data(p, branch, d)
+        }
+        fn kappa_increment(&self, p: &GpPoint<1, 1, u32>, s: &StageIncrement<'_, 1>) -> Vector1<f64> {
+            self.0.kappa_increment(p, s)
+        }
+        fn after_accept(&self, p: &mut GpPoint<1, 1, u32>, b: Branch) -> Result<Branch, MaterialError> {
+            self.0.after_accept(p, b)
+        }
+        fn error_scales(&self) -> (f64, Vector1<f64>) {
+            self.0.error_scales()
+        }
+        fn stop_in_substep(
+            &self,
+            before: &GpPoint<1, 1, u32>,
+            after: &mut GpPoint<1, 1, u32>,
+        ) -> Option<f64> {
+            if after.sigma[0] < self.1 {
+                return None;
+            }
+            let f = (self.1 - before.sigma[0]) / (after.sigma[0] - before.sigma[0]);
+            after.sigma[0] = self.1;
+            after.kappa = before.kappa + (after.kappa - before.kappa) * f;
+            Some(f)
+        }
+    }
+
+    #[test]
+    fn a_stop_inside_a_substep_reports_the_reached_fraction() {
+        // Loading from σ = 0.1: σ = 0.1 + E·H/(E+H)·ε = 0.1 + 20·ε reaches 0.2 at ε = 0.005.
+        let m = Stopper(Toy { e: 100.0, h: 25.0 }, 0.2);
+        let start = GpPoint {
+            sigma: Vector1::new(0.1),
+            kappa: Vector1::new(0.0),
+            memory: 0_u32,
+        };
+        let opts = SubstepOptions::default();
+        let res = integrate(&m, &start, &Vector1::new(0.01), Branch::Loading, &opts).expect("stops");
+        assert!((res.reached - 0.5).abs() < 1e-12, "reached {}", res.reached);
+        assert_eq!(res.point.sigma[0], 0.2);
+        // κ = ε^p = 0.8·(ε − 0) on the plastic branch: 0.004 at the stop.
+        assert!(
+            (res.point.kappa[0] - 0.004).abs() < 1e-14,
+            "{}",
+            res.point.kappa[0]
+        );
+        assert_eq!(
+            res.point.memory,
+            res.substeps - 1,
+            "after_accept skipped at the stop"
+        );
+        let full = integrate(&m.0, &start, &Vector1::new(0.01), Branch::Loading, &opts).expect("full");
+        assert_eq!((full.reached, full.rejected), (1.0, 0));
+    }
+
     #[test]
     fn guard_bounds_the_denominator() {
         let dd_e = Matrix1::new(100.0);
@@ -722,6 +874,8 @@ mod tests {
             "integration.stol"
         );
         assert!(serde_json::from_str::<SubstepOptions>(r#"{"stl": 1e-5}"#).is_err());
+        let alias: SubstepOptions = serde_json::from_str(r#"{"nmax": 7}"#).expect("alias");
+        assert_eq!(alias.max_substeps, 7);
     }
 
     /// A 3-component model (the interface dimension): D^e = E·I, n = n_g = σ/|σ| (radial),
@@ -774,7 +928,7 @@ mod tests {
         let d_eps = nalgebra::Vector3::new(0.02, 0.01, 0.0);
         let fine = SubstepOptions {
             stol: 1e-9,
-            nmax: 1_000_000,
+            max_substeps: 1_000_000,
             ..SubstepOptions::default()
         };
         let reference = integrate(&m, &start, &d_eps, Branch::Elastic, &fine).expect("fine");
@@ -785,7 +939,7 @@ mod tests {
         assert!(reference.substeps > coarse.substeps && coarse.substeps > 1);
         assert_eq!(coarse.kind, TangentKind::Continuum);
         let starved = SubstepOptions {
-            nmax: 2,
+            max_substeps: 2,
             ..SubstepOptions::default()
         };
         let e = integrate(&m, &start, &d_eps, Branch::Elastic, &starved).unwrap_err();

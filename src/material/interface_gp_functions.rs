@@ -1,24 +1,64 @@
 //! Model functions of the 3D state-dependent GP interface (spec §2): elasticity, critical state,
 //! the bounding-surface mapping, loading and flow directions, the plastic modulus, breakage,
-//! and the [`SubstepModel`] glue used by the explicit integrator (spec §8.2).
+//! and the [`GpModelFunctions`] implementation used by the generic explicit integrator
+//! ([`super::gp_integrator`], spec §8.2).
 //!
 //! Everything here works in the spec's compression-positive generalized variables
 //! `s = (τ_s, τ_a, σ_n)` (Pa) and `ε = (γ_s, γ_a, ε_n)` (−), spec (I1). The conversion from the
 //! element's jump and traction is done once, in [`super::interface_gp`].
+//!
+//! # The interface as a GP model of the integrator
+//! * σ = s; κ = (ε (3), ε^p (3), W_p, Δe_c) ([`KAPPA`] = 8; the void ratio follows from ε_n by
+//!   (I6)); memory = r_A, η_max, σ_c,max ([`InterfaceMemory`]).
+//! * Branch decision (I17)/(I18) at substep starts only ([`GpModelFunctions::begin_substep`]):
+//!   nᵀdσ^e > 0 is loading; nᵀdσ^e < 0 moves r_A to the current point, re-maps, and is
+//!   loading ("reverse loading") if now nᵀdσ^e > 0, otherwise elastic unloading, reported as
+//!   [`Branch::Unloading`] with H = ∞ (so the integrator treats it as elastic and a change to
+//!   loading inside the substep is a branch flip); |nᵀdσ^e| ≤ tolN·|n||dσ^e| is neutral.
+//! * H returned to the integrator is the guarded H of spec §8.6 item 4 (see
+//!   [`PointFunctions::denom`]).
+//! * Error measure ([`GpModelFunctions::substep_error`]):
+//!   R = max(‖Δs2 − Δs1‖/(2‖s̃‖ + σ_min), ‖Δε^p2 − Δε^p1‖·(1+e0)/(2·max(|ẽ|, 0.01))), i.e. the
+//!   stress error and the error of the void ratio through the plastic strain.
+//! * Opening (spec §2.12) is a stop inside the substep ([`GpModelFunctions::stop_in_substep`]):
+//!   the crossing σ_n = σ_open is interpolated linearly.
+//! * After an accepted substep η_max and σ_c,max are updated (spec G7).
 
-use super::interface_gp::{FhMode, GpBranch, GpInterface, GpInterfaceState, PeakForm};
-use super::interface_gp_substep::{Accepted, SubstepModel};
+use super::gp_integrator::{cosine, Branch, GpModelFunctions, GpPoint, PlasticData, StageIncrement};
+use super::interface_gp::{ElasticVoidRatio, FhMode, GpBranch, GpInterface, GpInterfaceState, PeakForm};
 use crate::error::MaterialError;
-use nalgebra::{Matrix3, Vector2, Vector3};
+use nalgebra::{Matrix3, SVector, Vector2, Vector3};
 
-/// Floor of the void ratio in the elastic factor (1+e)/e (caps it at 101) (spec tag INF).
+/// Floor of the void ratio in the elastic factor (1+e)/e under `elastic_void_ratio = current`
+/// (caps it at 101), and of |e| in the error measure (spec tag INF).
 pub const VOID_RATIO_FLOOR: f64 = 0.01;
 /// Cap of √(ρ_max/ρ) (spec (I12): ρ ≥ 0.01·ρ_max).
 pub const MAPPING_RATIO_CAP: f64 = 10.0;
 /// Below this |r − r_A| the mapping direction is taken from the trial increment (spec (I12)).
 const RHO_TINY: f64 = 1e-12;
-/// Relative branch tolerance tolN (spec §8.2).
-const TOL_N: f64 = 1e-6;
+/// Number of rate-integrated internal variables: ε (3), ε^p (3), W_p, Δe_c.
+pub const KAPPA: usize = 8;
+/// Index of ε^p_s in κ (ε^p occupies 3..6).
+const K_PLASTIC: usize = 3;
+/// Index of W_p in κ.
+const K_WORK: usize = 6;
+/// Index of Δe_c in κ.
+const K_BREAKAGE: usize = 7;
+
+/// Memory of an interface point: changed only at substep starts (the reversal point) and after
+/// accepted substeps (the max-history surfaces).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct InterfaceMemory {
+    /// Reversal point r_A (spec (I12)).
+    pub reversal_point: Vector2<f64>,
+    /// Radius η_max of the max-history circle (spec (I11), G7).
+    pub eta_max: f64,
+    /// σ_c,max of the τ–σ_n max-history surface (Pa, spec (I13)).
+    pub sigma_c_max: f64,
+}
+
+/// An interface point as the integrator sees it: s (Pa), κ = (ε, ε^p, W_p, Δe_c), memory.
+pub type InterfacePoint = GpPoint<3, KAPPA, InterfaceMemory>;
 
 /// The mapping of spec (I12): reversal point A = r_A, current point B = r, image point C on the
 /// max-history circle and D on the peak circle.
@@ -62,6 +102,43 @@ pub fn ray_circle(a: &Vector2<f64>, u: &Vector2<f64>, radius: f64) -> Option<f64
     }
 }
 
+/// Mapping direction u and ρ = |r − r_A| (spec (I12)), with the degenerate cases: u from the
+/// trial increment when ρ = 0 (evaluated only then), from r when that vanishes too, and u = 0
+/// when r = r_A = 0.
+fn mapping_direction(
+    r: &Vector2<f64>,
+    a: &Vector2<f64>,
+    trial_dr: impl FnOnce() -> Vector2<f64>,
+) -> (Vector2<f64>, f64) {
+    let d = r - a;
+    let rho = d.norm();
+    if rho > RHO_TINY {
+        return (d / rho, rho);
+    }
+    let t = trial_dr();
+    let u = if t.norm() > RHO_TINY {
+        t / t.norm()
+    } else if r.norm() > RHO_TINY {
+        r / r.norm()
+    } else {
+        Vector2::zeros()
+    };
+    (u, rho)
+}
+
+/// ρ_max = AC along u (spec (I12)) and the virgin flag ρ ≥ ρ_max − tol (then ρ_max = ρ).
+fn max_history_distance(a: &Vector2<f64>, u: &Vector2<f64>, rho: f64, eta_max: f64) -> (f64, bool) {
+    // G7: every state is kept inside the max-history circle; |A| ≤ η_max then holds too.
+    let radius = eta_max.max(a.norm());
+    let rho_max = ray_circle(a, u, radius).unwrap_or(0.0);
+    let tol = 1e-9 * (1.0 + radius);
+    if rho >= rho_max - tol {
+        (rho, true)
+    } else {
+        (rho_max, false)
+    }
+}
+
 /// The mapping of spec (I12) with its degenerate cases.
 ///
 /// * `r`: current stress-ratio point; `a`: reversal point; `eta_max`: max-history radius;
@@ -74,17 +151,7 @@ pub fn mapping(
     eta_p: f64,
     trial_dr: &Vector2<f64>,
 ) -> Mapping {
-    let d = r - a;
-    let rho = d.norm();
-    let u = if rho > RHO_TINY {
-        d / rho
-    } else if trial_dr.norm() > RHO_TINY {
-        trial_dr / trial_dr.norm()
-    } else if r.norm() > RHO_TINY {
-        r / r.norm()
-    } else {
-        Vector2::zeros()
-    };
+    let (u, rho) = mapping_direction(r, a, || *trial_dr);
     if u.norm() == 0.0 {
         return Mapping {
             u,
@@ -96,14 +163,7 @@ pub fn mapping(
             ratio: 1.0,
         };
     }
-    // G7: every state is kept inside the max-history circle; |A| ≤ η_max then holds too.
-    let radius = eta_max.max(a.norm());
-    let mut rho_max = ray_circle(a, &u, radius).unwrap_or(0.0);
-    let tol = 1e-9 * (1.0 + radius);
-    let virgin = rho >= rho_max - tol;
-    if virgin {
-        rho_max = rho;
-    }
+    let (rho_max, virgin) = max_history_distance(a, &u, rho, eta_max);
     let peak_distance = match ray_circle(a, &u, eta_p) {
         Some(rho_p) if a.norm() <= eta_p => 1.0 - rho / rho_p,
         _ => 1.0 - r.norm() / eta_p,
@@ -156,7 +216,8 @@ pub struct PointFunctions {
     pub ng: Vector3<f64>,
     /// Plastic modulus H (spec (I16)), Pa per unit strain.
     pub h: f64,
-    /// H + nᵀD^e n_g after the guard of spec §8.6 item 4.
+    /// H + nᵀD^e n_g after the guard of spec §8.6 item 4:
+    /// max(H + a, 0.05·max(a, 0.01·min(D_s, D_n))) with a = nᵀD^e n_g.
     pub denom: f64,
     /// State parameter ψ (spec (I8)).
     pub psi: f64,
@@ -171,33 +232,25 @@ impl PointFunctions {
     pub fn elastic(&self) -> Matrix3<f64> {
         Matrix3::from_diagonal(&self.de)
     }
-
-    /// D^ep = D^e − (D^e n_g)(nᵀD^e)/(H + nᵀD^e n_g) (spec (I19)).
-    pub fn elastoplastic(&self) -> Matrix3<f64> {
-        let dng = self.de.component_mul(&self.ng);
-        let nd = self.de.component_mul(&self.n);
-        self.elastic() - dng * nd.transpose() / self.denom
-    }
-
-    /// Loading indicator nᵀD^e dε and its tolerance tolN·|n|·|D^e dε| (spec (I17), §8.2).
-    pub fn indicator(&self, d_eps: &Vector3<f64>) -> (f64, f64) {
-        let dse = self.de.component_mul(d_eps);
-        (self.n.dot(&dse), TOL_N * self.n.norm() * dse.norm())
-    }
 }
 
 impl GpInterface {
-    /// Elastic moduli (D_s, D_n) at a state, Pa per unit strain (spec (I3), (I4)):
+    /// Elastic moduli (D_s, D_n) at a state with void ratio `void_ratio`, Pa per unit strain
+    /// (spec (I3), (I4)):
     ///
     /// ```text
-    /// D_s = D_s0·((1+e)/e)·[(σ̂_n/p_a)² + (τ/p_a)²]^0.5,   D_n = (D_n0/D_s0)·D_s,   σ̂_n = max(σ_n, σ_min)
+    /// D_s = D_s0·((1+ê)/ê)·[(σ̂_n/p_a)² + (τ/p_a)²]^0.5,   D_n = (D_n0/D_s0)·D_s,   σ̂_n = max(σ_n, σ_min)
     /// ```
     ///
-    /// times the stiffness-basis factor (t under `displacement`, 1 under `strain`).
+    /// times the stiffness-basis factor (t under `displacement`, 1 under `strain`), with
+    /// ê = e0 under `elastic_void_ratio = initial` and ê = max(e, 0.01) under `current`.
     pub fn elastic_moduli(&self, sigma_n: f64, tau: f64, void_ratio: f64) -> (f64, f64) {
         let p = &self.params;
         let sig = sigma_n.max(p.sigma_min);
-        let e = void_ratio.max(VOID_RATIO_FLOOR);
+        let e = match p.elastic_void_ratio {
+            ElasticVoidRatio::Initial => p.e0,
+            ElasticVoidRatio::Current => void_ratio.max(VOID_RATIO_FLOOR),
+        };
         let ds =
             self.basis_factor * p.ds0 * (1.0 + e) / e * ((sig / p.pa).powi(2) + (tau / p.pa).powi(2)).sqrt();
         (ds, ds * p.dn0 / p.ds0)
@@ -244,19 +297,48 @@ impl GpInterface {
     /// All model functions at state `st` for the strain increment direction `d_eps`
     /// (spec (I3)–(I16), (I19)).
     pub fn functions(&self, st: &GpInterfaceState, d_eps: &Vector3<f64>) -> PointFunctions {
+        self.functions_at(&self.to_point(st), d_eps)
+    }
+
+    /// Void ratio of a point, e = e0 − ε_n·(1 + e0) (spec (I6)).
+    pub fn void_ratio_at(&self, pt: &InterfacePoint) -> f64 {
+        self.params.e0 - pt.kappa[2] * (1.0 + self.params.e0)
+    }
+
+    /// σ̂_n, the stress ratio r (I2) and the diagonal of D^e (I3)–(I5) at a point.
+    fn elastic_at(&self, pt: &InterfacePoint) -> (f64, Vector2<f64>, Vector3<f64>) {
+        let s = &pt.sigma;
+        let sig = s[2].max(self.params.sigma_min);
+        let r = Vector2::new(s[0], s[1]) / sig;
+        let (ds, dn) = self.elastic_moduli(s[2], r.norm() * sig, self.void_ratio_at(pt));
+        (sig, r, Vector3::new(ds, ds, dn))
+    }
+
+    /// Virgin loading at a point (spec (I12): ρ ≥ ρ_max), without the rest of the mapping:
+    /// χ of the breakage rate (I21).
+    fn virgin_at(&self, pt: &InterfacePoint, d_eps: &Vector3<f64>) -> bool {
+        let sig = pt.sigma[2].max(self.params.sigma_min);
+        let r = Vector2::new(pt.sigma[0], pt.sigma[1]) / sig;
+        let a = &pt.memory.reversal_point;
+        let (u, rho) = mapping_direction(&r, a, || {
+            let dse = self.elastic_at(pt).2.component_mul(d_eps);
+            (Vector2::new(dse[0], dse[1]) - r * dse[2]) / sig
+        });
+        u.norm() == 0.0 || max_history_distance(a, &u, rho, pt.memory.eta_max).1
+    }
+
+    /// All model functions at an integrator point (spec (I3)–(I16)).
+    pub fn functions_at(&self, pt: &InterfacePoint, d_eps: &Vector3<f64>) -> PointFunctions {
         let p = &self.params;
-        let s = &st.stress;
-        let sig = s[2].max(p.sigma_min);
-        let r = self.stress_ratio(s);
+        let s = &pt.sigma;
+        let (sig, r, de) = self.elastic_at(pt);
         let eta = r.norm();
-        let (ds, dn) = self.elastic_moduli(s[2], eta * sig, st.void_ratio);
-        let de = Vector3::new(ds, ds, dn);
+        let void_ratio = self.void_ratio_at(pt);
         let dse = de.component_mul(d_eps);
         let trial_dr = (Vector2::new(dse[0], dse[1]) - r * dse[2]) / sig;
-        let psi = self.state_parameter(s[2], st.void_ratio, st.delta_e_c);
+        let psi = self.state_parameter(s[2], void_ratio, pt.kappa[K_BREAKAGE]);
         let eta_p = self.peak_ratio(psi).max(1e-6);
-        let a = Vector2::new(st.reversal_point[0], st.reversal_point[1]);
-        let map = mapping(&r, &a, st.eta_max, eta_p, &trial_dr);
+        let map = mapping(&r, &pt.memory.reversal_point, pt.memory.eta_max, eta_p, &trial_dr);
         let rd_alpha = p.rd * p.alpha;
         // (I14): flow direction, shear unit vector at the image point, current η.
         let e_img = if map.image.norm() > RHO_TINY {
@@ -282,7 +364,7 @@ impl GpInterface {
             * fh;
         // §8.6 item 4: H + nᵀD^e n_g ≥ 0.05·nᵀD^e n_g (and a positive floor when nᵀD^e n_g ≤ 0).
         let a_dn = n.dot(&de.component_mul(&ng));
-        let floor = 0.05 * a_dn.max(0.01 * ds.min(dn));
+        let floor = 0.05 * a_dn.max(0.01 * de[0].min(de[2]));
         let denom = (h + a_dn).max(floor);
         PointFunctions {
             de,
@@ -295,178 +377,203 @@ impl GpInterface {
             map,
         }
     }
-}
 
-/// Branch frozen over one substep.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum SubstepBranch {
-    /// nᵀdσ^e ≤ 0 after the reversal rule, or neutral: elastic.
-    Elastic,
-    /// Plastic loading (virgin or reverse/cyclic loading).
-    Load,
-}
-
-/// Increment of the state over one Euler stage.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct StateRate {
-    /// ds (Pa).
-    pub d_stress: Vector3<f64>,
-    /// dε (−).
-    pub d_strain: Vector3<f64>,
-    /// dε^p (−).
-    pub d_plastic: Vector3<f64>,
-    /// ⟨dW_p⟩ (Pa).
-    pub d_work: f64,
-    /// dΔe_c (−).
-    pub d_breakage: f64,
-}
-
-fn add3(a: &[f64; 3], b: &Vector3<f64>, w: f64) -> [f64; 3] {
-    [a[0] + w * b[0], a[1] + w * b[1], a[2] + w * b[2]]
-}
-
-impl SubstepModel for GpInterface {
-    type Point = GpInterfaceState;
-    type Branch = SubstepBranch;
-    type Rate = StateRate;
-
-    /// Branch decision with the reversal rule (spec (I17), (I18)).
-    fn begin(
-        &self,
-        p: &GpInterfaceState,
-        d_eps: &Vector3<f64>,
-    ) -> Result<(GpInterfaceState, SubstepBranch), MaterialError> {
-        let f = self.functions(p, d_eps);
-        let (l, tol) = f.indicator(d_eps);
-        if l > tol {
-            return Ok((p.clone(), SubstepBranch::Load));
+    /// The integrator point of a (closed) state.
+    pub fn to_point(&self, st: &GpInterfaceState) -> InterfacePoint {
+        let mut kappa = SVector::<f64, KAPPA>::zeros();
+        for i in 0..3 {
+            kappa[i] = st.strain[i];
+            kappa[K_PLASTIC + i] = st.plastic_strain[i];
         }
-        if l < -tol {
-            let r = self.stress_ratio(&p.stress);
-            let mut q = p.clone();
-            q.reversal_point = [r[0], r[1]];
-            let f2 = self.functions(&q, d_eps);
-            let (l2, tol2) = f2.indicator(d_eps);
-            let br = if l2 > tol2 {
-                SubstepBranch::Load
-            } else {
-                SubstepBranch::Elastic
-            };
-            return Ok((q, br));
+        kappa[K_WORK] = st.plastic_work;
+        kappa[K_BREAKAGE] = st.delta_e_c;
+        InterfacePoint {
+            sigma: Vector3::from(st.stress),
+            kappa,
+            memory: InterfaceMemory {
+                reversal_point: Vector2::from(st.reversal_point),
+                eta_max: st.eta_max,
+                sigma_c_max: st.sigma_c_max,
+            },
         }
-        Ok((p.clone(), SubstepBranch::Elastic))
     }
 
-    /// Rate equations (spec (I19)–(I21)).
-    fn rate(
-        &self,
-        p: &GpInterfaceState,
-        br: SubstepBranch,
-        d_eps: &Vector3<f64>,
-    ) -> Result<(StateRate, bool), MaterialError> {
-        let pr = &self.params;
-        let f = self.functions(p, d_eps);
-        let (l, tol) = f.indicator(d_eps);
-        let (d_plastic, agrees) = match br {
-            SubstepBranch::Load => (f.ng * (l.max(0.0) / f.denom), l >= -tol),
-            SubstepBranch::Elastic => (Vector3::zeros(), l <= tol),
-        };
-        let d_stress = f.de.component_mul(&(d_eps - d_plastic));
-        let s = Vector3::new(p.stress[0], p.stress[1], p.stress[2]);
-        let d_work = s.dot(&d_plastic).max(0.0);
-        let chi = if f.map.virgin { 1.0 } else { pr.c };
-        let d_breakage = chi * d_work / (pr.a + pr.b * p.plastic_work).powi(2);
-        let rate = StateRate {
-            d_stress,
-            d_strain: *d_eps,
-            d_plastic,
-            d_work,
-            d_breakage,
-        };
-        if !rate.d_stress.iter().all(|v| v.is_finite()) {
-            return Err(MaterialError::new("GP interface: non-finite stress rate"));
+    /// Writes an integrator point into a state (the other fields are left unchanged).
+    pub fn write_point(&self, pt: &InterfacePoint, st: &mut GpInterfaceState) {
+        for i in 0..3 {
+            st.stress[i] = pt.sigma[i];
+            st.strain[i] = pt.kappa[i];
+            st.plastic_strain[i] = pt.kappa[K_PLASTIC + i];
         }
-        Ok((rate, agrees))
+        st.plastic_work = pt.kappa[K_WORK];
+        st.delta_e_c = pt.kappa[K_BREAKAGE];
+        st.void_ratio = self.void_ratio_at(pt);
+        st.reversal_point = [pt.memory.reversal_point[0], pt.memory.reversal_point[1]];
+        st.eta_max = pt.memory.eta_max;
+        st.sigma_c_max = pt.memory.sigma_c_max;
     }
 
-    fn advance(&self, p: &GpInterfaceState, r: &StateRate, w: f64) -> GpInterfaceState {
-        let mut q = p.clone();
-        q.stress = add3(&p.stress, &r.d_stress, w);
-        q.strain = add3(&p.strain, &r.d_strain, w);
-        q.plastic_strain = add3(&p.plastic_strain, &r.d_plastic, w);
-        q.plastic_work = p.plastic_work + w * r.d_work;
-        q.delta_e_c = p.delta_e_c + w * r.d_breakage;
-        q.void_ratio = self.params.e0 - q.strain[2] * (1.0 + self.params.e0);
-        q
-    }
-
-    fn average(&self, p: &GpInterfaceState, r1: &StateRate, r2: &StateRate) -> GpInterfaceState {
-        let mean = StateRate {
-            d_stress: 0.5 * (r1.d_stress + r2.d_stress),
-            d_strain: 0.5 * (r1.d_strain + r2.d_strain),
-            d_plastic: 0.5 * (r1.d_plastic + r2.d_plastic),
-            d_work: 0.5 * (r1.d_work + r2.d_work),
-            d_breakage: 0.5 * (r1.d_breakage + r2.d_breakage),
-        };
-        self.advance(p, &mean, 1.0)
-    }
-
-    /// R = max(‖Δs2 − Δs1‖/(2‖s̃‖ + σ_min), |Δε^p2 − Δε^p1|·(1+e0)/(2ẽ)) (spec §8.2).
-    fn error(&self, p_new: &GpInterfaceState, r1: &StateRate, r2: &StateRate) -> f64 {
-        let s = Vector3::new(p_new.stress[0], p_new.stress[1], p_new.stress[2]);
-        let es = (r2.d_stress - r1.d_stress).norm() / (2.0 * s.norm() + self.params.sigma_min);
-        let ee = (r2.d_plastic - r1.d_plastic).norm() * (1.0 + self.params.e0)
-            / (2.0 * p_new.void_ratio.abs().max(VOID_RATIO_FLOOR));
-        es.max(ee)
-    }
-
-    /// Post-step rules: η_max and σ_c,max updated every accepted substep (spec G7), opening test
-    /// with linear interpolation of the crossing (spec §2.12).
-    fn accept(&self, before: &GpInterfaceState, after: GpInterfaceState) -> Accepted<GpInterfaceState> {
-        let pr = &self.params;
-        let s_open = pr.sigma_open;
-        if after.stress[2] <= s_open {
-            let span = before.stress[2] - after.stress[2];
-            let frac = if span > 0.0 {
-                ((before.stress[2] - s_open) / span).clamp(0.0, 1.0)
-            } else {
-                0.0
-            };
-            let lerp = |a: f64, b: f64| a + frac * (b - a);
-            let mut q = before.clone();
-            for i in 0..3 {
-                q.strain[i] = lerp(before.strain[i], after.strain[i]);
-                q.plastic_strain[i] = lerp(before.plastic_strain[i], after.plastic_strain[i]);
-            }
-            q.plastic_work = lerp(before.plastic_work, after.plastic_work);
-            q.delta_e_c = lerp(before.delta_e_c, after.delta_e_c);
-            q.void_ratio = pr.e0 - q.strain[2] * (1.0 + pr.e0);
-            return Accepted::Stop {
-                point: q,
-                fraction: frac,
-            };
-        }
-        let mut q = after;
-        let r = self.stress_ratio(&q.stress);
-        q.eta_max = q.eta_max.max(r.norm());
-        q.sigma_c_max = q.sigma_c_max.max(self.surface_size(q.stress[2], r.norm()));
-        Accepted::Continue(q)
-    }
-}
-
-impl GpInterface {
-    /// Branch flag of a state after a substep on branch `br` (for output).
-    pub fn branch_flag(&self, st: &GpInterfaceState, br: SubstepBranch, d_eps: &Vector3<f64>) -> GpBranch {
+    /// Branch flag of a state after a substep on `br` (for output): virgin or cyclic loading
+    /// by the mapping (spec (I12)), elastic otherwise.
+    pub fn branch_flag(&self, st: &GpInterfaceState, br: Branch, d_eps: &Vector3<f64>) -> GpBranch {
         match br {
-            SubstepBranch::Elastic => GpBranch::Elastic,
-            SubstepBranch::Load => {
-                if self.functions(st, d_eps).map.virgin {
+            Branch::Loading => {
+                if self.virgin_at(&self.to_point(st), d_eps) {
                     GpBranch::Virgin
                 } else {
                     GpBranch::Cyclic
                 }
             }
+            Branch::Elastic | Branch::Unloading => GpBranch::Elastic,
         }
+    }
+}
+
+impl GpModelFunctions<3, KAPPA> for GpInterface {
+    type Memory = InterfaceMemory;
+
+    /// D^e = diag(D_s, D_s, D_n) (spec (I3)–(I5)).
+    fn elastic_matrix(&self, pt: &InterfacePoint) -> Matrix3<f64> {
+        Matrix3::from_diagonal(&self.elastic_at(pt).2)
+    }
+
+    /// Loading: n (I15), n_g (I14) and the guarded H (I16, §8.6 item 4). Unloading (elastic
+    /// after the reversal rule): H = ∞.
+    fn plastic_data(
+        &self,
+        pt: &InterfacePoint,
+        branch: Branch,
+        d_eps: &Vector3<f64>,
+    ) -> Result<PlasticData<3>, MaterialError> {
+        match branch {
+            Branch::Loading => {
+                let f = self.functions_at(pt, d_eps);
+                let a_dn = f.n.dot(&f.de.component_mul(&f.ng));
+                let h = f.denom - a_dn;
+                if h.is_nan() || !f.n.iter().chain(f.ng.iter()).all(|x| x.is_finite()) {
+                    return Err(MaterialError::new("GP interface: non-finite plastic data"));
+                }
+                Ok(PlasticData { n: f.n, n_g: f.ng, h })
+            }
+            Branch::Unloading => Ok(PlasticData {
+                n: Vector3::zeros(),
+                n_g: Vector3::zeros(),
+                h: f64::INFINITY,
+            }),
+            Branch::Elastic => Err(MaterialError::new(
+                "GP interface: plastic data of the elastic branch",
+            )),
+        }
+    }
+
+    /// Cosine of n (I15, at the point's mapping) and dσ^e (spec (I17)).
+    fn loading_indicator(
+        &self,
+        pt: &InterfacePoint,
+        d_eps: &Vector3<f64>,
+        d_sig_e: &Vector3<f64>,
+    ) -> Result<f64, MaterialError> {
+        Ok(cosine(&self.functions_at(pt, d_eps).n, d_sig_e))
+    }
+
+    /// Loading criterion and reversal rule (spec (I17), (I18)).
+    fn begin_substep(
+        &self,
+        pt: &mut InterfacePoint,
+        d_eps: &Vector3<f64>,
+        d_sig_e: &Vector3<f64>,
+        tol_n: f64,
+    ) -> Result<(Branch, f64), MaterialError> {
+        let c = self.loading_indicator(pt, d_eps, d_sig_e)?;
+        if c > tol_n {
+            return Ok((Branch::Loading, c));
+        }
+        if c < -tol_n {
+            pt.memory.reversal_point = self.stress_ratio(&pt.sigma.into());
+            let c2 = self.loading_indicator(pt, d_eps, d_sig_e)?;
+            let br = if c2 > tol_n {
+                Branch::Loading
+            } else {
+                Branch::Unloading
+            };
+            return Ok((br, c2));
+        }
+        Ok((Branch::Elastic, c))
+    }
+
+    /// dε = dT·Δε; dε^p = dλ·n_g (I20); ⟨dW_p⟩ = ⟨s·dε^p⟩ (I20); dΔe_c = χ⟨dW_p⟩/(a + bW_p)²
+    /// with χ = c on cyclic branches (I21).
+    fn kappa_increment(&self, pt: &InterfacePoint, stage: &StageIncrement<'_, 3>) -> SVector<f64, KAPPA> {
+        let pr = &self.params;
+        let mut dk = SVector::<f64, KAPPA>::zeros();
+        for i in 0..3 {
+            dk[i] = stage.d_eps[i];
+        }
+        let Some(data) = stage.plastic else {
+            return dk;
+        };
+        let d_plastic = data.n_g * stage.d_lambda;
+        for i in 0..3 {
+            dk[K_PLASTIC + i] = d_plastic[i];
+        }
+        let d_work = pt.sigma.dot(&d_plastic).max(0.0);
+        let chi = if self.virgin_at(pt, stage.d_eps) {
+            1.0
+        } else {
+            pr.c
+        };
+        dk[K_WORK] = d_work;
+        dk[K_BREAKAGE] = chi * d_work / (pr.a + pr.b * pt.kappa[K_WORK]).powi(2);
+        dk
+    }
+
+    /// η_max and σ_c,max updated after every accepted substep (spec G7, (I13)).
+    fn after_accept(&self, pt: &mut InterfacePoint, branch: Branch) -> Result<Branch, MaterialError> {
+        let eta = self.stress_ratio(&pt.sigma.into()).norm();
+        pt.memory.eta_max = pt.memory.eta_max.max(eta);
+        pt.memory.sigma_c_max = pt.memory.sigma_c_max.max(self.surface_size(pt.sigma[2], eta));
+        Ok(branch)
+    }
+
+    /// Not used: [`Self::substep_error`] is overridden (σ_min is the stress scale).
+    fn error_scales(&self) -> (f64, SVector<f64, KAPPA>) {
+        (self.params.sigma_min, SVector::repeat(f64::INFINITY))
+    }
+
+    /// R = max(‖Δs2 − Δs1‖/(2‖s̃‖ + σ_min), ‖Δε^p2 − Δε^p1‖·(1+e0)/(2·max(|ẽ|, 0.01)))
+    /// (spec §8.2; the second term is the error of the void ratio through ε^p).
+    fn substep_error(
+        &self,
+        new_point: (&Vector3<f64>, &SVector<f64, KAPPA>),
+        stage1: (&Vector3<f64>, &SVector<f64, KAPPA>),
+        stage2: (&Vector3<f64>, &SVector<f64, KAPPA>),
+    ) -> f64 {
+        let pr = &self.params;
+        let es = (stage2.0 - stage1.0).norm() / (2.0 * new_point.0.norm() + pr.sigma_min);
+        let dp = stage2.1.fixed_rows::<3>(K_PLASTIC) - stage1.1.fixed_rows::<3>(K_PLASTIC);
+        let e_new = pr.e0 - new_point.1[2] * (1.0 + pr.e0);
+        let ee = dp.norm() * (1.0 + pr.e0) / (2.0 * e_new.abs().max(VOID_RATIO_FLOOR));
+        es.max(ee)
+    }
+
+    /// Opening test (spec §2.12): σ_n ≤ σ_open ends the integration at the crossing,
+    /// interpolated linearly in the substep (stress kept at the substep start; the caller
+    /// sets it to zero).
+    fn stop_in_substep(&self, before: &InterfacePoint, after: &mut InterfacePoint) -> Option<f64> {
+        let s_open = self.params.sigma_open;
+        if after.sigma[2] > s_open {
+            return None;
+        }
+        let span = before.sigma[2] - after.sigma[2];
+        let frac = if span > 0.0 {
+            ((before.sigma[2] - s_open) / span).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        after.kappa = before.kappa + (after.kappa - before.kappa) * frac;
+        after.sigma = before.sigma;
+        after.memory = before.memory;
+        Some(frac)
     }
 }
 

@@ -20,7 +20,6 @@ pub mod elastic;
 pub mod gp_integrator;
 pub mod interface_gp;
 pub mod interface_gp_functions;
-pub mod interface_gp_substep;
 pub mod interface_hyperbolic;
 pub mod interface_mc;
 pub mod joint;
