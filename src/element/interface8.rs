@@ -114,7 +114,7 @@ pub const DEGENERATE_AREA_RATIO: f64 = 1e-10;
 pub const MIN_REFERENCE_COSINE: f64 = 1e-3;
 
 /// Integration rule of the interface element (spec §5.4, eq. (E8)).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum InterfaceRule {
     /// 2×2 nodal Newton–Cotes (Lobatto) points, one per node pair (default, spec (E8)).

@@ -452,3 +452,208 @@ fn element_tangent_matches_central_differences_for_every_law() {
         );
     }
 }
+
+/// Isotropic elastic tangent (Pa).
+fn elastic(e: f64, nu: f64) -> Tangent6 {
+    let lam = e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
+    let mu = e / (2.0 * (1.0 + nu));
+    let mut d = Matrix6::zeros();
+    for i in 0..3 {
+        for j in 0..3 {
+            d[(i, j)] = lam;
+        }
+        d[(i, i)] += 2.0 * mu;
+        d[(i + 3, i + 3)] = mu;
+    }
+    Tangent6(d)
+}
+
+/// Normal tractions t_n (Pa) along the interface of the EL-2 model, sorted by x, on the row of
+/// points nearest to y = 0: (x, t_n) pairs.
+type Profile = Vec<(f64, f64)>;
+
+/// The EL-2 model (see [`el2_model`]).
+#[derive(Debug, Clone, Copy)]
+struct El2Setup {
+    /// Elements along x (each 1 m × 1 m in plan).
+    nx: usize,
+    /// Leading foundation elements that are stiff.
+    n_stiff: usize,
+    /// Young's modulus of the upper block (Pa).
+    e_upper: f64,
+    /// Thickness of the upper block (m).
+    h_upper: f64,
+}
+
+/// EL-2 model: a lower block of `nx` × 1 × 1 hex8 (1 m cubes; the first `n_stiff` stiff, the
+/// others soft) and an upper block of `nx` × 1 × 1 hex8, joined by `nx` interface elements
+/// (face B = lower block, n_ref = +z) with the linear law diag(k_s, k_s, k_n), under a uniform
+/// pressure `p` on the top. Base fixed, y fixed everywhere (plane strain).
+/// Returns the traction profile and the total interface normal force.
+fn el2_model(setup: El2Setup, rule: InterfaceRule, k_n: f64, p: f64) -> (Profile, Vec<f64>, f64) {
+    let nx = setup.nx;
+    let per_layer = (nx + 1) * 2;
+    let lower = |i: usize, j: usize, k: usize| i + (nx + 1) * j + per_layer * k;
+    let upper = |i: usize, j: usize, k: usize| 2 * per_layer + lower(i, j, k);
+    let mut coords = vec![[0.0; 3]; 4 * per_layer];
+    for k in 0..2 {
+        for j in 0..2 {
+            for i in 0..=nx {
+                coords[lower(i, j, k)] = [i as f64, j as f64, k as f64];
+                coords[upper(i, j, k)] = [i as f64, j as f64, 1.0 + setup.h_upper * k as f64];
+            }
+        }
+    }
+    let ndof = 3 * coords.len();
+    let mut kg = DMatrix::<f64>::zeros(ndof, ndof);
+    let mut fg = DVector::<f64>::zeros(ndof);
+    let scatter = |conn: &[usize; 8], ke: &Matrix24, fe: &Vector24, kg: &mut DMatrix<f64>, fg: &mut DVector<f64>| {
+        for (a, &na) in conn.iter().enumerate() {
+            for i in 0..3 {
+                fg[3 * na + i] += fe[3 * a + i];
+                for (b, &nb) in conn.iter().enumerate() {
+                    for j in 0..3 {
+                        kg[(3 * na + i, 3 * nb + j)] += ke[(3 * a + i, 3 * b + j)];
+                    }
+                }
+            }
+        }
+    };
+    let hex = |n: &dyn Fn(usize, usize, usize) -> usize, i: usize| -> [usize; 8] {
+        [n(i, 0, 0), n(i + 1, 0, 0), n(i + 1, 1, 0), n(i, 1, 0), n(i, 0, 1), n(i + 1, 0, 1), n(i + 1, 1, 1), n(i, 1, 1)]
+    };
+    let (stiff, soft) = (elastic(25.5e9, 0.167), elastic(50e6, 0.25));
+    let top = elastic(setup.e_upper, 0.2);
+    for i in 0..nx {
+        for (conn, d, loaded) in [
+            (hex(&lower, i), if i < setup.n_stiff { stiff } else { soft }, false),
+            (hex(&upper, i), top, true),
+        ] {
+            let x: Coords8 = conn.map(|n| coords[n]);
+            let ke = Hex8Geometry::new(&x).expect("valid hex").stiffness(&[d; 8]);
+            let fe = if loaded { face_pressure_load(&x, 5, &[p; 4]) } else { Vector24::zeros() };
+            scatter(&conn, &ke, &fe, &mut kg, &mut fg);
+        }
+    }
+    let d_int = Matrix3::from_diagonal(&Vector3::new(1e7, 1e7, k_n));
+    let mut interfaces = Vec::new();
+    for i in 0..nx {
+        let conn = [
+            lower(i, 0, 1),
+            lower(i + 1, 0, 1),
+            lower(i + 1, 1, 1),
+            lower(i, 1, 1),
+            upper(i, 0, 0),
+            upper(i + 1, 0, 0),
+            upper(i + 1, 1, 0),
+            upper(i, 1, 0),
+        ];
+        let x: Coords8 = conn.map(|n| coords[n]);
+        let g = Interface8Geometry::new(&x, &[0.0, 0.0, 1.0], &FrameAxes::default(), rule).expect("valid");
+        let ke = g.stiffness(&[d_int; 4]);
+        scatter(&conn, &ke, &Vector24::zeros(), &mut kg, &mut fg);
+        interfaces.push((conn, g));
+    }
+    // Dirichlet conditions u = 0: base nodes (all DOFs) and every y DOF.
+    let fixed: Vec<usize> = (0..ndof)
+        .filter(|&dof| {
+            let node = dof / 3;
+            dof % 3 == 1 || (node < 2 * per_layer && coords[node][2] == 0.0)
+        })
+        .collect();
+    for &dof in &fixed {
+        kg.row_mut(dof).fill(0.0);
+        kg.column_mut(dof).fill(0.0);
+        kg[(dof, dof)] = 1.0;
+        fg[dof] = 0.0;
+    }
+    let u = kg.lu().solve(&fg).expect("non-singular system");
+    let mut profile = Vec::new();
+    let mut total = 0.0;
+    // Nodal tractions k_n·δ_n at the node pairs of the y = 0 row (the same from both sides).
+    let mut nodal = vec![0.0; nx + 1];
+    for (conn, _) in &interfaces {
+        for a in [0usize, 1] {
+            let i = conn[a] % (nx + 1);
+            nodal[i] = k_n * (u[3 * conn[a + 4] + 2] - u[3 * conn[a] + 2]);
+        }
+    }
+    for (conn, g) in &interfaces {
+        let ue = Vector24::from_fn(|r, _| u[3 * conn[r / 3] + r % 3]);
+        let jumps = g.jumps(&ue);
+        for q in 0..4 {
+            let t = d_int * jumps[q];
+            total += t[2] * g.area_w[q];
+            if g.positions[q][1] < 0.5 {
+                profile.push((g.positions[q][0], t[2]));
+            }
+        }
+    }
+    profile.sort_by(|a, b| a.0.total_cmp(&b.0));
+    profile.dedup_by(|a, b| (a.0 - b.0).abs() < 1e-12 && (a.1 - b.1).abs() <= 1e-9 * b.1.abs());
+    (profile, nodal, total)
+}
+
+/// Largest deviation of a sampled profile from the straight line through each sample's two
+/// neighbours, over the samples with `lo < x ≤ hi` (interior samples only), in units of `p`.
+fn oscillation_amplitude(profile: &Profile, lo: f64, hi: f64, p: f64) -> f64 {
+    let pts: Vec<(f64, f64)> = profile.iter().copied().filter(|(x, _)| *x > lo && *x <= hi).collect();
+    pts.windows(3)
+        .map(|w| {
+            let r = (w[1].0 - w[0].0) / (w[2].0 - w[0].0);
+            (w[1].1 - (w[0].1 + r * (w[2].1 - w[0].1))).abs() / p
+        })
+        .fold(0.0, f64::max)
+}
+
+/// EL-2 (Day & Potts type, spec §5.4): a stiff slab (E = 25.5 GPa, 0.5 m) on an interface with
+/// k_n = 10⁷ kPa/m over a foundation of 8 one-metre elements, the first two stiff (a plinth,
+/// E = 25.5 GPa) and the others soft (E = 50 MPa), under a uniform 100 kPa load. Next to the
+/// stiff block (2 m < x ≤ 5 m) the Gauss 2×2 tractions zig-zag and turn tensile, while the
+/// nodal rule gives a smooth compressive profile; with a soft interface (k_n = 10⁵ kPa/m) the
+/// Gauss oscillation mostly disappears. Both rules carry the whole load.
+///
+/// The amplitude is the largest deviation of a traction sample from the line through its two
+/// neighbours, in units of the load. (8 elements instead of 4: a single soft element next to
+/// the block gives too few samples to see a profile.)
+#[test]
+fn el2_gauss_oscillates_next_to_a_stiff_block_newton_cotes_does_not() {
+    let p = 1e5;
+    let setup = El2Setup {
+        nx: 8,
+        n_stiff: 2,
+        e_upper: 25.5e9,
+        h_upper: 0.5,
+    };
+    let (lo, hi) = (2.0, 5.0);
+    let mut amp = std::collections::HashMap::new();
+    for k_n in [1e8, 1e10, 1e12] {
+        for rule in RULES {
+            let (profile, nodal, total) = el2_model(setup, rule, k_n, p);
+            let a = oscillation_amplitude(&profile, lo, hi, p);
+            let near: Vec<f64> = profile.iter().filter(|(x, _)| *x >= lo && *x <= hi).map(|v| v.1).collect();
+            let tensile = near.iter().filter(|&&t| t > 0.0).count();
+            println!(
+                "EL-2 {rule:?}, k_n = {k_n:.0e} Pa/m: total normal force {total:.6e} N (load {:.6e} N); amplitude on ({lo}, {hi}] m = {a:.4} p; tensile points on [{lo}, {hi}] m: {tensile}",
+                -8.0 * p
+            );
+            println!(
+                "    points (x m: t_n kPa) {}",
+                profile.iter().map(|(x, t)| format!("{x:.2}: {:.1}", t / 1e3)).collect::<Vec<_>>().join(", ")
+            );
+            println!(
+                "    node pairs k_n*delta_n (kPa) {}",
+                nodal.iter().map(|t| format!("{:.1}", t / 1e3)).collect::<Vec<_>>().join(", ")
+            );
+            assert!((total + 8.0 * p).abs() < 1e-8 * 8.0 * p, "equilibrium: {total}");
+            amp.insert((rule, k_n as i64), (a, tensile));
+        }
+    }
+    let nc = amp[&(InterfaceRule::NewtonCotes, 10_000_000_000)];
+    let gauss = amp[&(InterfaceRule::Gauss2x2, 10_000_000_000)];
+    let gauss_soft = amp[&(InterfaceRule::Gauss2x2, 100_000_000)];
+    assert!(nc.0 < 0.05 && nc.1 == 0, "Newton-Cotes should be smooth and compressive: {nc:?}");
+    assert!(gauss.0 > 0.5 && gauss.1 > 0, "Gauss should oscillate into tension: {gauss:?}");
+    assert!(gauss.0 > 10.0 * nc.0, "Gauss {gauss:?} vs Newton-Cotes {nc:?}");
+    assert!(gauss_soft.0 < 0.5 * gauss.0, "softer interface, smaller oscillation: {gauss_soft:?}");
+}
