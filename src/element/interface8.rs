@@ -139,7 +139,9 @@ impl InterfaceRule {
 #[derive(Debug, Clone, Copy, PartialEq, Error)]
 pub enum InterfaceGeometryError {
     /// The mid-surface is degenerate at an integration point (collapsed edge or zero area).
-    #[error("degenerate interface mid-surface at integration point {point}: |g1 x g2| = {area_density:.3e} m2")]
+    #[error(
+        "degenerate interface mid-surface at integration point {point}: |g1 x g2| = {area_density:.3e} m2"
+    )]
     Degenerate {
         /// Integration point (0..4).
         point: usize,
@@ -235,13 +237,13 @@ impl Interface8Geometry {
         let (g1, g2, _) = mid_surface(&xm, &[0.0, 0.0]);
         let c = g1.cross(&g2);
         let c_norm = c.norm();
-        if !(c_norm > min_area) {
+        if !(c_norm.is_finite() && c_norm > min_area) {
             return Err(InterfaceGeometryError::DegenerateCentre { area_density: c_norm });
         }
         let n_centre = c / c_norm;
         let r = Vector3::from(*n_ref);
         let cosine = n_centre.dot(&r) / r.norm();
-        if !(cosine.abs() >= MIN_REFERENCE_COSINE) {
+        if !(cosine.is_finite() && cosine.abs() >= MIN_REFERENCE_COSINE) {
             return Err(InterfaceGeometryError::ReferenceInPlane { cosine: cosine.abs() });
         }
         let sign = cosine.signum();
@@ -258,8 +260,11 @@ impl Interface8Geometry {
             let (g1, g2, xq) = mid_surface(&xm, &point.st);
             let c = g1.cross(&g2);
             let area_density = c.norm();
-            if !(area_density > min_area) {
-                return Err(InterfaceGeometryError::Degenerate { point: q, area_density });
+            if !(area_density.is_finite() && area_density > min_area) {
+                return Err(InterfaceGeometryError::Degenerate {
+                    point: q,
+                    area_density,
+                });
             }
             let n = c * (sign / area_density);
             if n.dot(&n_centre) <= 0.0 {

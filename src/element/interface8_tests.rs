@@ -163,8 +163,14 @@ fn local_errors(k: &Matrix24, kfl: &Matrix24, f: &LocalFrame) -> [f64; 4] {
 #[test]
 fn rule_names_and_default() {
     assert_eq!(InterfaceRule::default(), InterfaceRule::NewtonCotes);
-    assert_eq!(serde_yaml::to_string(&InterfaceRule::NewtonCotes).unwrap().trim(), "newton_cotes");
-    assert_eq!(serde_yaml::to_string(&InterfaceRule::Gauss2x2).unwrap().trim(), "gauss2x2");
+    assert_eq!(
+        serde_yaml::to_string(&InterfaceRule::NewtonCotes).unwrap().trim(),
+        "newton_cotes"
+    );
+    assert_eq!(
+        serde_yaml::to_string(&InterfaceRule::Gauss2x2).unwrap().trim(),
+        "gauss2x2"
+    );
     let r: InterfaceRule = serde_yaml::from_str("gauss2x2").unwrap();
     assert_eq!(r, InterfaceRule::Gauss2x2);
     assert!(serde_yaml::from_str::<InterfaceRule>("gauss").is_err());
@@ -199,8 +205,8 @@ fn el1_frame_on_the_slope_face() {
     // The same face in the seed's axes (X stream, Y up, Z dam axis): (x, y, z) → (X, Z, Y).
     let seed: Coords8 = x.map(|p| [p[0], p[2], p[1]]);
     let axes = FrameAxes::new([0.0, 0.0, 1.0], [0.0, 1.0, 0.0]).expect("valid");
-    let g = Interface8Geometry::new(&seed, &[1.0, -1.4, 0.0], &axes, InterfaceRule::NewtonCotes)
-        .expect("valid");
+    let g =
+        Interface8Geometry::new(&seed, &[1.0, -1.4, 0.0], &axes, InterfaceRule::NewtonCotes).expect("valid");
     let r = 2.96f64.sqrt();
     for f in &g.frames {
         assert!((f.s - Vector3::new(1.4, 1.0, 0.0) / r).amax() < 1e-15);
@@ -240,7 +246,10 @@ fn el1_rigid_motion_gives_no_jump_and_no_force() {
         for (t, w) in [
             (Vector3::new(0.3, -0.2, 0.5), Vector3::zeros()),
             (Vector3::zeros(), Vector3::new(1e-3, -2e-3, 0.5e-3)),
-            (Vector3::new(0.01, 0.02, -0.03), Vector3::new(-0.7e-3, 0.2e-3, 1.3e-3)),
+            (
+                Vector3::new(0.01, 0.02, -0.03),
+                Vector3::new(-0.7e-3, 0.2e-3, 1.3e-3),
+            ),
         ] {
             let u = rigid(&x, t, w);
             let resp = g.evaluate(&u, cubic_law).expect("law");
@@ -289,8 +298,7 @@ fn el1_uniform_jump_gives_traction_times_tributary_area() {
     }
     // Planar trapezoid, tilted: nodal rule ↔ ‖g1 × g2‖ at the nodes, Gauss ↔ ∫ N_a dA.
     let rot = nalgebra::Rotation3::from_euler_angles(-0.3, 0.5, 0.2);
-    let face = [[0.0, 0.0], [3.0, 0.0], [2.0, 1.5], [0.5, 1.5]]
-        .map(|p| rot * Vector3::new(p[0], p[1], 0.0));
+    let face = [[0.0, 0.0], [3.0, 0.0], [2.0, 1.5], [0.5, 1.5]].map(|p| rot * Vector3::new(p[0], p[1], 0.0));
     let area_exact = 0.5 * (3.0 + 1.5) * 1.5;
     let x = zero_thickness(face);
     let n_ref: [f64; 3] = (rot * Vector3::z()).into();
@@ -345,7 +353,10 @@ fn tangent_matches_central_differences_with_an_exact_law() {
         assert!(err < 1e-7);
         // The per-point frames of a warped element differ.
         let spread = (g.frames[0].n - g.frames[2].n).norm();
-        assert!(spread > 1e-2, "warped element should have varying normals ({spread})");
+        assert!(
+            spread > 1e-2,
+            "warped element should have varying normals ({spread})"
+        );
     }
 }
 
@@ -360,7 +371,8 @@ fn model_fd_errors<M: InterfaceModel>(
     h: [f64; 3],
 ) -> [f64; 4] {
     let law = |q: usize, d: &Local3, _: &LocalFrame| {
-        m.update(&committed[q], d).map(|up| (M::traction(&up.state), up.tangent))
+        m.update(&committed[q], d)
+            .map(|up| (M::traction(&up.state), up.tangent))
     };
     let k = g.evaluate(u, law).expect("update").k;
     let k_fd = fd_jacobian_local(u, &g.frames[0], h, |v| g.evaluate(v, law).expect("update").f_int);
@@ -382,8 +394,13 @@ fn pair_jumps(f: &LocalFrame, jumps: [[f64; 3]; 4]) -> Vector24 {
 #[test]
 fn element_tangent_matches_central_differences_for_every_law() {
     let x = slope_rectangle(1.0, 1.0);
-    let g = Interface8Geometry::new(&x, &into_dam().into(), &FrameAxes::default(), InterfaceRule::NewtonCotes)
-        .expect("valid");
+    let g = Interface8Geometry::new(
+        &x,
+        &into_dam().into(),
+        &FrameAxes::default(),
+        InterfaceRule::NewtonCotes,
+    )
+    .expect("valid");
     let f = g.frames[0];
     let mut report = Vec::new();
     let max = |e: &[f64; 4]| e.iter().copied().fold(0.0, f64::max);
@@ -392,9 +409,19 @@ fn element_tangent_matches_central_differences_for_every_law() {
     let mc = MohrCoulombInterface::new(&MohrCoulombParams::default());
     let s0 = mc.init_state(1e5).expect("init");
     let committed: [_; 4] = std::array::from_fn(|q| {
-        mc.update(&s0, &Local3::new(5e-3 * q as f64, 2e-3, -1e-6)).expect("pre").state
+        mc.update(&s0, &Local3::new(5e-3 * q as f64, 2e-3, -1e-6))
+            .expect("pre")
+            .state
     });
-    let u = pair_jumps(&f, [[2e-3, 1e-3, -2e-6], [30e-3, 5e-3, -1e-6], [40e-3, -20e-3, -3e-6], [1e-3, 0.0, 0.0]]);
+    let u = pair_jumps(
+        &f,
+        [
+            [2e-3, 1e-3, -2e-6],
+            [30e-3, 5e-3, -1e-6],
+            [40e-3, -20e-3, -3e-6],
+            [1e-3, 0.0, 0.0],
+        ],
+    );
     let e = model_fd_errors(&mc, &committed, &g, &u, [1e-7, 1e-7, 1e-10]);
     report.push(("mohr_coulomb (consistent)", e));
     assert!(max(&e) < 1e-6, "MC: {e:?}");
@@ -402,7 +429,15 @@ fn element_tangent_matches_central_differences_for_every_law() {
     // Joint (exact piecewise-linear law), away from δ_n = 0: pairs closed and open.
     let jt = JointLaw::new(&JointParams::default());
     let committed = [jt.init_state(2e5).expect("init"); 4];
-    let u = pair_jumps(&f, [[1e-3, 2e-3, -1e-6], [-3e-3, 1e-3, 2e-3], [0.0, 1e-3, -1e-5], [5e-3, -5e-3, 1e-4]]);
+    let u = pair_jumps(
+        &f,
+        [
+            [1e-3, 2e-3, -1e-6],
+            [-3e-3, 1e-3, 2e-3],
+            [0.0, 1e-3, -1e-5],
+            [5e-3, -5e-3, 1e-4],
+        ],
+    );
     // Steps 1e-6 m (shear), 1e-8 m (normal): the law is linear on each side of δ_n = 0 and
     // every pair is ≥ 1e-6 m away from it, so large steps only lower the round-off.
     let e = model_fd_errors(&jt, &committed, &g, &u, [1e-6, 1e-6, 1e-8]);
@@ -417,9 +452,19 @@ fn element_tangent_matches_central_differences_for_every_law() {
     let gp = GpInterface::new(params).expect("params");
     let s0 = gp.init_state(2e5).expect("init");
     let committed: [_; 4] = std::array::from_fn(|q| {
-        gp.update(&s0, &Local3::new(1e-3 * q as f64, 0.5e-3, -1e-4)).expect("pre").state
+        gp.update(&s0, &Local3::new(1e-3 * q as f64, 0.5e-3, -1e-4))
+            .expect("pre")
+            .state
     });
-    let u = pair_jumps(&f, [[2e-3, 0.0, -1e-4], [1.5e-3, 1e-3, -5e-5], [3e-3, -1e-3, 0.0], [1e-3, 2e-3, -2e-4]]);
+    let u = pair_jumps(
+        &f,
+        [
+            [2e-3, 0.0, -1e-4],
+            [1.5e-3, 1e-3, -5e-5],
+            [3e-3, -1e-3, 0.0],
+            [1e-3, 2e-3, -2e-4],
+        ],
+    );
     let e = model_fd_errors(&gp, &committed, &g, &u, [1e-7, 1e-7, 1e-8]);
     report.push(("gp_interface (numerical consistent)", e));
     assert!(max(&e) < 1e-4, "GP: {e:?}");
@@ -507,31 +552,49 @@ fn el2_model(setup: El2Setup, rule: InterfaceRule, k_n: f64, p: f64) -> (Profile
     let ndof = 3 * coords.len();
     let mut kg = DMatrix::<f64>::zeros(ndof, ndof);
     let mut fg = DVector::<f64>::zeros(ndof);
-    let scatter = |conn: &[usize; 8], ke: &Matrix24, fe: &Vector24, kg: &mut DMatrix<f64>, fg: &mut DVector<f64>| {
-        for (a, &na) in conn.iter().enumerate() {
-            for i in 0..3 {
-                fg[3 * na + i] += fe[3 * a + i];
-                for (b, &nb) in conn.iter().enumerate() {
-                    for j in 0..3 {
-                        kg[(3 * na + i, 3 * nb + j)] += ke[(3 * a + i, 3 * b + j)];
+    let scatter =
+        |conn: &[usize; 8], ke: &Matrix24, fe: &Vector24, kg: &mut DMatrix<f64>, fg: &mut DVector<f64>| {
+            for (a, &na) in conn.iter().enumerate() {
+                for i in 0..3 {
+                    fg[3 * na + i] += fe[3 * a + i];
+                    for (b, &nb) in conn.iter().enumerate() {
+                        for j in 0..3 {
+                            kg[(3 * na + i, 3 * nb + j)] += ke[(3 * a + i, 3 * b + j)];
+                        }
                     }
                 }
             }
-        }
-    };
+        };
     let hex = |n: &dyn Fn(usize, usize, usize) -> usize, i: usize| -> [usize; 8] {
-        [n(i, 0, 0), n(i + 1, 0, 0), n(i + 1, 1, 0), n(i, 1, 0), n(i, 0, 1), n(i + 1, 0, 1), n(i + 1, 1, 1), n(i, 1, 1)]
+        [
+            n(i, 0, 0),
+            n(i + 1, 0, 0),
+            n(i + 1, 1, 0),
+            n(i, 1, 0),
+            n(i, 0, 1),
+            n(i + 1, 0, 1),
+            n(i + 1, 1, 1),
+            n(i, 1, 1),
+        ]
     };
     let (stiff, soft) = (elastic(25.5e9, 0.167), elastic(50e6, 0.25));
     let top = elastic(setup.e_upper, 0.2);
     for i in 0..nx {
         for (conn, d, loaded) in [
-            (hex(&lower, i), if i < setup.n_stiff { stiff } else { soft }, false),
+            (
+                hex(&lower, i),
+                if i < setup.n_stiff { stiff } else { soft },
+                false,
+            ),
             (hex(&upper, i), top, true),
         ] {
             let x: Coords8 = conn.map(|n| coords[n]);
             let ke = Hex8Geometry::new(&x).expect("valid hex").stiffness(&[d; 8]);
-            let fe = if loaded { face_pressure_load(&x, 5, &[p; 4]) } else { Vector24::zeros() };
+            let fe = if loaded {
+                face_pressure_load(&x, 5, &[p; 4])
+            } else {
+                Vector24::zeros()
+            };
             scatter(&conn, &ke, &fe, &mut kg, &mut fg);
         }
     }
@@ -597,7 +660,11 @@ fn el2_model(setup: El2Setup, rule: InterfaceRule, k_n: f64, p: f64) -> (Profile
 /// Largest deviation of a sampled profile from the straight line through each sample's two
 /// neighbours, over the samples with `lo < x ≤ hi` (interior samples only), in units of `p`.
 fn oscillation_amplitude(profile: &Profile, lo: f64, hi: f64, p: f64) -> f64 {
-    let pts: Vec<(f64, f64)> = profile.iter().copied().filter(|(x, _)| *x > lo && *x <= hi).collect();
+    let pts: Vec<(f64, f64)> = profile
+        .iter()
+        .copied()
+        .filter(|(x, _)| *x > lo && *x <= hi)
+        .collect();
     pts.windows(3)
         .map(|w| {
             let r = (w[1].0 - w[0].0) / (w[2].0 - w[0].0);
@@ -631,7 +698,11 @@ fn el2_gauss_oscillates_next_to_a_stiff_block_newton_cotes_does_not() {
         for rule in RULES {
             let (profile, nodal, total) = el2_model(setup, rule, k_n, p);
             let a = oscillation_amplitude(&profile, lo, hi, p);
-            let near: Vec<f64> = profile.iter().filter(|(x, _)| *x >= lo && *x <= hi).map(|v| v.1).collect();
+            let near: Vec<f64> = profile
+                .iter()
+                .filter(|(x, _)| *x >= lo && *x <= hi)
+                .map(|v| v.1)
+                .collect();
             let tensile = near.iter().filter(|&&t| t > 0.0).count();
             println!(
                 "EL-2 {rule:?}, k_n = {k_n:.0e} Pa/m: total normal force {total:.6e} N (load {:.6e} N); amplitude on ({lo}, {hi}] m = {a:.4} p; tensile points on [{lo}, {hi}] m: {tensile}",
@@ -639,11 +710,19 @@ fn el2_gauss_oscillates_next_to_a_stiff_block_newton_cotes_does_not() {
             );
             println!(
                 "    points (x m: t_n kPa) {}",
-                profile.iter().map(|(x, t)| format!("{x:.2}: {:.1}", t / 1e3)).collect::<Vec<_>>().join(", ")
+                profile
+                    .iter()
+                    .map(|(x, t)| format!("{x:.2}: {:.1}", t / 1e3))
+                    .collect::<Vec<_>>()
+                    .join(", ")
             );
             println!(
                 "    node pairs k_n*delta_n (kPa) {}",
-                nodal.iter().map(|t| format!("{:.1}", t / 1e3)).collect::<Vec<_>>().join(", ")
+                nodal
+                    .iter()
+                    .map(|t| format!("{:.1}", t / 1e3))
+                    .collect::<Vec<_>>()
+                    .join(", ")
             );
             assert!((total + 8.0 * p).abs() < 1e-8 * 8.0 * p, "equilibrium: {total}");
             amp.insert((rule, k_n as i64), (a, tensile));
@@ -652,8 +731,314 @@ fn el2_gauss_oscillates_next_to_a_stiff_block_newton_cotes_does_not() {
     let nc = amp[&(InterfaceRule::NewtonCotes, 10_000_000_000)];
     let gauss = amp[&(InterfaceRule::Gauss2x2, 10_000_000_000)];
     let gauss_soft = amp[&(InterfaceRule::Gauss2x2, 100_000_000)];
-    assert!(nc.0 < 0.05 && nc.1 == 0, "Newton-Cotes should be smooth and compressive: {nc:?}");
-    assert!(gauss.0 > 0.5 && gauss.1 > 0, "Gauss should oscillate into tension: {gauss:?}");
+    assert!(
+        nc.0 < 0.05 && nc.1 == 0,
+        "Newton-Cotes should be smooth and compressive: {nc:?}"
+    );
+    assert!(
+        gauss.0 > 0.5 && gauss.1 > 0,
+        "Gauss should oscillate into tension: {gauss:?}"
+    );
     assert!(gauss.0 > 10.0 * nc.0, "Gauss {gauss:?} vs Newton-Cotes {nc:?}");
-    assert!(gauss_soft.0 < 0.5 * gauss.0, "softer interface, smaller oscillation: {gauss_soft:?}");
+    assert!(
+        gauss_soft.0 < 0.5 * gauss.0,
+        "softer interface, smaller oscillation: {gauss_soft:?}"
+    );
+}
+
+/// EL-3 (thin-layer scaling, spec §9.5): for the GP interface the element stiffness scales as
+/// 1/t. In the GP law t enters through the strain ε = S·δ/t and the tangent dT/dδ = S·D·S/t
+/// (spec (E6), (E7)); D depends on the state (σ, e) only under the literal reading
+/// `stiffness_basis = strain`, so there, at the same state, doubling t halves K exactly, and a
+/// displacement path scaled with t reaches the same state (same strains, same tractions) with
+/// half the stiffness. Under the default `stiffness_basis = displacement` (D_s0, D_n0, H0 per
+/// unit displacement, D_strain = t·D) the t factors cancel: K does not depend on t at the same
+/// state.
+#[test]
+fn el3_gp_interface_stiffness_scales_with_one_over_t() {
+    let x = slope_rectangle(1.0, 1.0);
+    let g = Interface8Geometry::new(
+        &x,
+        &into_dam().into(),
+        &FrameAxes::default(),
+        InterfaceRule::NewtonCotes,
+    )
+    .expect("valid");
+    let f = g.frames[0];
+    let run = |basis: StiffnessBasis, t: f64, scale: f64| {
+        let gp = GpInterface::new(GpInterfaceParams {
+            t,
+            stiffness_basis: basis,
+            ..GpInterfaceParams::default()
+        })
+        .expect("params");
+        let s0 = gp.init_state(1e5).expect("init");
+        let committed: [_; 4] = std::array::from_fn(|_| s0.clone());
+        let law = |q: usize, d: &Local3, _: &LocalFrame| {
+            gp.update(&committed[q], d)
+                .map(|up| (GpInterface::traction(&up.state), up.tangent))
+        };
+        let at_rest = g.evaluate(&Vector24::zeros(), law).expect("update");
+        // Plastic step: shear 2 mm and 1 mm, closure 0.1 mm per 0.1 m of thickness.
+        let u = pair_jumps(
+            &f,
+            [
+                [2e-3, 1e-3, -1e-4],
+                [2e-3, 1e-3, -1e-4],
+                [1.5e-3, 0.5e-3, -0.5e-4],
+                [2.5e-3, 0.0, -1e-4],
+            ],
+        ) * scale;
+        let loaded = g.evaluate(&u, law).expect("update");
+        (at_rest, loaded)
+    };
+    let (rest1, load1) = run(StiffnessBasis::Strain, 0.1, 1.0);
+    let (rest2, load2) = run(StiffnessBasis::Strain, 0.2, 2.0);
+    let rest_ratio = (rest2.k * 2.0 - rest1.k).amax() / rest1.k.amax();
+    let load_ratio = (load2.k * 2.0 - load1.k).amax() / load1.k.amax();
+    let force_diff = (load2.f_int - load1.f_int).amax() / load1.f_int.amax();
+    let kk = |r: &InterfaceResponse, a: usize, c: usize| {
+        let q = local_rotation(&f);
+        (q * r.k * q.transpose())[(3 * a + c, 3 * a + c)]
+    };
+    println!(
+        "EL-3 strain basis: pair 4 local K_ss, K_nn at rest: t = 0.1 m {:.6e}, {:.6e} N/m; t = 0.2 m {:.6e}, {:.6e} N/m",
+        kk(&rest1, 4, 0),
+        kk(&rest1, 4, 2),
+        kk(&rest2, 4, 0),
+        kk(&rest2, 4, 2)
+    );
+    println!(
+        "EL-3 strain basis: max |2 K(0.2) - K(0.1)|/max|K(0.1)| at rest {rest_ratio:.2e}, after the scaled plastic step {load_ratio:.2e}; f_int difference {force_diff:.2e}; tractions at pair 0: {:?} vs {:?} Pa",
+        load1.points[0].traction.as_slice(),
+        load2.points[0].traction.as_slice()
+    );
+    assert!(rest_ratio < 1e-12 && load_ratio < 1e-12 && force_diff < 1e-12);
+    // The plastic step did leave the elastic state (the tangent is not the at-rest one).
+    assert!((load1.k - rest1.k).amax() > 1e-3 * rest1.k.amax());
+    let (rest1, _) = run(StiffnessBasis::Displacement, 0.1, 1.0);
+    let (rest2, _) = run(StiffnessBasis::Displacement, 0.2, 2.0);
+    let same = (rest2.k - rest1.k).amax() / rest1.k.amax();
+    println!(
+        "EL-3 displacement basis (default): K_ss at rest t = 0.1 m {:.6e}, t = 0.2 m {:.6e} N/m; max |K(0.2) - K(0.1)|/max|K(0.1)| = {same:.2e}",
+        kk(&rest1, 4, 0),
+        kk(&rest2, 4, 0)
+    );
+    assert!(same < 1e-12);
+}
+
+/// A vertical joint between two slabs of the 1:1.4 face: the joint plane holds the slope line
+/// and the slab normal (2 m × 0.5 m), its normal is the dam axis y (face B → face A along +y).
+fn vertical_joint() -> (Interface8Geometry, LocalFrame) {
+    let o = Vector3::new(3.0, 2.0, 1.0);
+    let (s, t) = (slope_dir() * 2.0, into_dam() * 0.5);
+    let x = zero_thickness([o, o + s, o + s + t, o + t]);
+    let axes = FrameAxes::new([0.0, 1.0, 0.0], slope_dir().into()).expect("orthogonal");
+    let g = Interface8Geometry::new(&x, &[0.0, 1.0, 0.0], &axes, InterfaceRule::NewtonCotes).expect("valid");
+    (g, g.frames[0])
+}
+
+/// With the slab's up-slope line as "up", a vertical joint gets §6.1's frame: e_s = up-slope
+/// (e_1), e_a = slab normal (e_2), e_n = dam axis.
+#[test]
+fn joint_frame_follows_the_slab_slope() {
+    let (g, f) = vertical_joint();
+    println!(
+        "vertical joint frame: e_s = {:?}, e_a = {:?}, e_n = {:?}",
+        f.s.as_slice(),
+        f.a.as_slice(),
+        f.n.as_slice()
+    );
+    assert!((f.s - slope_dir()).amax() < 1e-15);
+    assert!((f.a - into_dam()).amax() < 1e-15);
+    assert!((f.n - Vector3::y()).amax() < 1e-15);
+    assert!((g.area() - 1.0).abs() < 1e-14);
+    // With the default axes the fallback takes the vertical instead of the slope line.
+    let x: Coords8 = std::array::from_fn(|a| g.positions[a % 4]);
+    let d = Interface8Geometry::new(
+        &x,
+        &[0.0, 1.0, 0.0],
+        &FrameAxes::default(),
+        InterfaceRule::NewtonCotes,
+    )
+    .expect("valid");
+    println!(
+        "vertical joint, default axes: e_s = {:?}, e_a = {:?}",
+        d.frames[0].s.as_slice(),
+        d.frames[0].a.as_slice()
+    );
+    assert!((d.frames[0].s - Vector3::z()).amax() < 1e-15);
+}
+
+/// Normal force on face A (N, along e_n) and the normal stiffness of one pair for a uniform
+/// local jump of face A relative to face B, with the joint law from its stress-free state.
+fn joint_uniform(g: &Interface8Geometry, f: &LocalFrame, jump: Local3) -> InterfaceResponse {
+    let jt = JointLaw::new(&JointParams::default());
+    let s0 = jt.init_state(0.0).expect("init");
+    let u = uniform_jump(Vector3::zeros(), f.to_global(&jump));
+    g.evaluate(&u, |_, d: &Local3, _: &LocalFrame| {
+        jt.update(&s0, d)
+            .map(|up| (JointLaw::traction(&up.state), up.tangent))
+    })
+    .expect("update")
+}
+
+/// JT-1 (spec §6.1, §9.5): joint element in compression (k_c) and opening (k_t), exact pair
+/// forces, nodal forces continuous at δ_n = 0, each pair on its own branch with the nodal rule,
+/// and a Newton iteration on the normal load crossing δ_n = 0 without chattering.
+#[test]
+fn jt1_joint_element_compression_opening_and_continuity() {
+    let (g, f) = vertical_joint();
+    let pair_area = 0.25;
+    let (kc, kt) = (2.5e10, 5e6);
+    for (dn, k) in [(-1e-4, kc), (1e-3, kt)] {
+        let r = joint_uniform(&g, &f, Local3::new(0.0, 0.0, dn));
+        let q = local_rotation(&f);
+        let kl = q * r.k * q.transpose();
+        let mut err = 0.0f64;
+        for a in 0..4 {
+            let fa = f.to_local(&r.f_int.fixed_rows::<3>(3 * (a + 4)).into_owned());
+            err =
+                err.max((fa - Local3::new(0.0, 0.0, k * dn * pair_area)).amax() / (k * dn.abs() * pair_area));
+            err = err.max((kl[(3 * a + 2, 3 * a + 2)] - k * pair_area).abs() / (k * pair_area));
+        }
+        println!(
+            "JT-1 delta_n = {dn:+e} m: pair normal force {:.6e} N, pair K_nn {:.6e} N/m, max rel error {err:.1e}",
+            f.to_local(&r.f_int.fixed_rows::<3>(12).into_owned())[2],
+            kl[(14, 14)]
+        );
+        assert!(err < 1e-12);
+    }
+    for h in [1e-9, 1e-12, 1e-15] {
+        let fp = joint_uniform(&g, &f, Local3::new(0.0, 0.0, h)).f_int;
+        let fm = joint_uniform(&g, &f, Local3::new(0.0, 0.0, -h)).f_int;
+        let jump = (fp - fm).amax();
+        let bound = (kc + kt) * h * pair_area;
+        println!("JT-1 continuity: max |f(+{h:e}) - f(-{h:e})| = {jump:.3e} N (bound (k_c + k_t) h A/4 = {bound:.3e} N)");
+        assert!(jump <= bound * (1.0 + 1e-12));
+    }
+    // Rotation about the joint's slope line: pairs 0, 1 open, pairs 2, 3 close; with the nodal
+    // rule each pair carries exactly its own branch.
+    let jt = JointLaw::new(&JointParams::default());
+    let s0 = jt.init_state(0.0).expect("init");
+    let dn = [2e-4, 2e-4, -1e-4, -1e-4];
+    let u = pair_jumps(&f, std::array::from_fn(|a| [0.0, 0.0, dn[a]]));
+    let r = g
+        .evaluate(&u, |_, d: &Local3, _: &LocalFrame| {
+            jt.update(&s0, d)
+                .map(|up| (JointLaw::traction(&up.state), up.tangent))
+        })
+        .expect("update");
+    for a in 0..4 {
+        let fa = f.to_local(&r.f_int.fixed_rows::<3>(3 * (a + 4)).into_owned())[2];
+        let k = if dn[a] > 0.0 { kt } else { kc };
+        println!(
+            "JT-1 mixed: pair {a} delta_n = {:+e} m, normal force {fa:.6e} N",
+            dn[a]
+        );
+        assert!((fa - k * dn[a] * pair_area).abs() <= 1e-12 * k * dn[a].abs() * pair_area);
+    }
+    // Newton on the normal translation w of face A for a total normal force F (N) crossing 0.
+    let mut w = 0.0;
+    for target in [2e3, -5e5, 1e3, -1.0, 0.5, -1e6] {
+        let mut iters = 0;
+        loop {
+            let r = joint_uniform(&g, &f, Local3::new(0.0, 0.0, w));
+            let q = local_rotation(&f);
+            let kl = q * r.k * q.transpose();
+            let force: f64 = (4..8)
+                .map(|a| f.to_local(&r.f_int.fixed_rows::<3>(3 * a).into_owned())[2])
+                .sum();
+            let residual = force - target;
+            if residual.abs() <= 1e-8 * target.abs().max(1.0) {
+                break;
+            }
+            let stiffness: f64 = (4..8)
+                .map(|a| (4..8).map(|b| kl[(3 * a + 2, 3 * b + 2)]).sum::<f64>())
+                .sum();
+            w -= residual / stiffness;
+            iters += 1;
+            assert!(iters <= 3, "target {target} N: no convergence in 3 iterations");
+        }
+        println!("JT-1 Newton: total normal force {target:+e} N reached in {iters} iterations (delta_n = {w:+.6e} m)");
+    }
+}
+
+/// JT-2 (spec §6.1, §9.5): combined opening and shear; the shear stiffness is 10³ kPa/m and the
+/// shear forces are k_s·δ·A/4 per pair, whatever the opening.
+#[test]
+fn jt2_joint_element_shear_independent_of_opening() {
+    let (g, f) = vertical_joint();
+    let (ks, pair_area) = (1e6, 0.25);
+    let q = local_rotation(&f);
+    for dn in [-1e-4, 0.0, 1e-3, 0.05] {
+        let jump = Local3::new(2e-3, -1e-3, dn);
+        let r = joint_uniform(&g, &f, jump);
+        let kl = q * r.k * q.transpose();
+        let mut err = 0.0f64;
+        for a in 0..4 {
+            let fa = f.to_local(&r.f_int.fixed_rows::<3>(3 * (a + 4)).into_owned());
+            for c in 0..2 {
+                err = err.max((fa[c] - ks * jump[c] * pair_area).abs() / (ks * 2e-3 * pair_area));
+                err = err.max((kl[(3 * a + c, 3 * a + c)] - ks * pair_area).abs() / (ks * pair_area));
+            }
+        }
+        println!(
+            "JT-2 delta_n = {dn:+e} m: pair shear forces {:.6e}, {:.6e} N, pair K_ss = {:.6e} N/m (k_s A/4 = {:.6e}), max rel error {err:.1e}",
+            f.to_local(&r.f_int.fixed_rows::<3>(12).into_owned())[0],
+            f.to_local(&r.f_int.fixed_rows::<3>(12).into_owned())[1],
+            kl[(12, 12)],
+            ks * pair_area
+        );
+        assert!(err < 1e-12);
+    }
+}
+
+#[test]
+fn invalid_geometry_is_rejected_with_its_reason() {
+    let x = slope_rectangle(1.0, 1.0);
+    let rule = InterfaceRule::NewtonCotes;
+    let axes = FrameAxes::default();
+    // n_ref in the plane of the face.
+    let err = Interface8Geometry::new(&x, &slope_dir().into(), &axes, rule).expect_err("in plane");
+    assert!(
+        matches!(err, InterfaceGeometryError::ReferenceInPlane { .. }),
+        "{err}"
+    );
+    assert!(Interface8Geometry::new(&x, &[f64::NAN, 0.0, 0.0], &axes, rule).is_err());
+    // A collapsed edge: nodes 1 and 2 coincide (and their pairs).
+    let mut c = x;
+    c[2] = c[1];
+    c[6] = c[5];
+    let err = Interface8Geometry::new(&c, &into_dam().into(), &axes, rule).expect_err("collapsed");
+    println!("collapsed edge: {err}");
+    assert!(
+        matches!(err, InterfaceGeometryError::Degenerate { point: 1 | 2, .. }),
+        "{err}"
+    );
+    // All nodes at one point.
+    let p = [[1.0, 2.0, 3.0]; 8];
+    let err = Interface8Geometry::new(&p, &[0.0, 0.0, 1.0], &axes, rule).expect_err("point");
+    assert!(
+        matches!(err, InterfaceGeometryError::DegenerateCentre { .. }),
+        "{err}"
+    );
+    // A concave ("arrowhead") quad: node 2 inside the triangle of nodes 0, 1, 3, so the normal
+    // at node 2 opposes the centre normal.
+    let arrow = zero_thickness(
+        [[0.0, 0.0], [2.0, 0.0], [0.4, 0.4], [0.0, 2.0]].map(|p| Vector3::new(p[0], p[1], 0.0)),
+    );
+    let err = Interface8Geometry::new(&arrow, &[0.0, 0.0, 1.0], &axes, rule).expect_err("folded");
+    println!("concave quad: {err}");
+    assert_eq!(err, InterfaceGeometryError::Folded { point: 2 });
+    // A bow-tie (nodes 2 and 3 swapped) has no area at its centre.
+    let mut b = x;
+    b.swap(2, 3);
+    b.swap(6, 7);
+    let err = Interface8Geometry::new(&b, &into_dam().into(), &axes, rule).expect_err("bow-tie");
+    println!("bow-tie: {err}");
+    assert!(
+        matches!(err, InterfaceGeometryError::DegenerateCentre { .. }),
+        "{err}"
+    );
 }

@@ -115,7 +115,11 @@ impl LocalFrame {
             // so |e_up − (e_up·e_n)e_n|² = 1 − (e_up·e_n)² > 0.99: the projection cannot vanish.
             let s_proj = axes.up - axes.up.dot(n) * n;
             let s = s_proj / s_proj.norm();
-            LocalFrame { s, a: n.cross(&s), n: *n }
+            LocalFrame {
+                s,
+                a: n.cross(&s),
+                n: *n,
+            }
         }
     }
 
@@ -141,8 +145,15 @@ mod tests {
 
     fn assert_orthonormal_right_handed(f: &LocalFrame) {
         let r = f.rotation();
-        assert!((r * r.transpose() - Matrix3::identity()).amax() < 1e-14, "R Rᵀ ≠ I: {r}");
-        assert!((r.determinant() - 1.0).abs() < 1e-14, "det R = {}", r.determinant());
+        assert!(
+            (r * r.transpose() - Matrix3::identity()).amax() < 1e-14,
+            "R Rᵀ ≠ I: {r}"
+        );
+        assert!(
+            (r.determinant() - 1.0).abs() < 1e-14,
+            "det R = {}",
+            r.determinant()
+        );
         assert!((f.s.cross(&f.a) - f.n).amax() < 1e-14, "s × a ≠ n");
     }
 
@@ -153,7 +164,10 @@ mod tests {
         let r = 2.96f64.sqrt();
         let n = Vector3::new(1.0, -1.4, 0.0) / r;
         let f = LocalFrame::from_normal(&n, &axes);
-        println!("seed axes 1:1.4: e_s = {:?}, e_a = {:?}, e_n = {:?}", f.s, f.a, f.n);
+        println!(
+            "seed axes 1:1.4: e_s = {:?}, e_a = {:?}, e_n = {:?}",
+            f.s, f.a, f.n
+        );
         assert!((f.s - Vector3::new(1.4, 1.0, 0.0) / r).amax() < 1e-15);
         assert!((f.a - Vector3::z()).amax() < 1e-15);
         assert_orthonormal_right_handed(&f);
@@ -164,7 +178,10 @@ mod tests {
         let r = 2.96f64.sqrt();
         let n = Vector3::new(1.0, 0.0, -1.4) / r;
         let f = LocalFrame::from_normal(&n, &FrameAxes::default());
-        println!("project axes 1:1.4: e_s = {:?}, e_a = {:?}, e_n = {:?}", f.s, f.a, f.n);
+        println!(
+            "project axes 1:1.4: e_s = {:?}, e_a = {:?}, e_n = {:?}",
+            f.s, f.a, f.n
+        );
         assert!((f.s - Vector3::new(1.4, 0.0, 1.0) / r).amax() < 1e-15);
         assert!((f.a + Vector3::y()).amax() < 1e-15);
         assert!(f.s.z > 0.0);
@@ -201,7 +218,10 @@ mod tests {
                 let n = Vector3::new(theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos());
                 let f = LocalFrame::from_normal(&n, &axes);
                 assert_orthonormal_right_handed(&f);
-                assert!(f.s.dot(&axes.up) >= -SLOPE_TIE_TOLERANCE, "s points down for n = {n}");
+                assert!(
+                    f.s.dot(&axes.up) >= -SLOPE_TIE_TOLERANCE,
+                    "s points down for n = {n}"
+                );
                 if (axes.dam_axis - axes.dam_axis.dot(&n) * n).norm() < FALLBACK_THRESHOLD {
                     fallbacks += 1;
                 }

@@ -166,7 +166,10 @@ mod tests {
             }
         }
         // Not exact for degree 2: on the square Σ ξ_q² = 4 instead of ∫ ξ² = 4/3.
-        let q2: f64 = QUAD_NEWTON_COTES_2X2.iter().map(|g| g.weight * g.st[0].powi(2)).sum();
+        let q2: f64 = QUAD_NEWTON_COTES_2X2
+            .iter()
+            .map(|g| g.weight * g.st[0].powi(2))
+            .sum();
         assert!((q2 - 4.0).abs() < 1e-15);
     }
 }
