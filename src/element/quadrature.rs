@@ -1,4 +1,5 @@
-//! Gauss–Legendre rules on the reference hexahedron `[−1, 1]³` and quadrilateral `[−1, 1]²`.
+//! Gauss–Legendre rules on the reference hexahedron `[−1, 1]³` and quadrilateral `[−1, 1]²`,
+//! and the nodal (Newton–Cotes) rule on the quadrilateral used by the interface elements.
 //!
 //! ```text
 //! ∫_{[−1,1]³} f(ξ) dξ ≈ Σ_q w_q f(ξ_q)
@@ -92,6 +93,22 @@ pub const QUAD_GAUSS_2X2: [FacePoint; 4] = {
     pts
 };
 
+/// The 2×2 Newton–Cotes (Lobatto, nodal) rule on a face: point `a` at quad node `a`, all
+/// weights 1 (the trapezoidal rule in each direction; exact for degree ≤ 1 in each variable).
+/// Used by the interface elements (spec §5.4, eq. (E8)).
+pub const QUAD_NEWTON_COTES_2X2: [FacePoint; 4] = {
+    let mut pts = [FacePoint {
+        st: [0.0; 2],
+        weight: 1.0,
+    }; 4];
+    let mut a = 0;
+    while a < 4 {
+        pts[a].st = QUAD4_REFERENCE_NODES[a];
+        a += 1;
+    }
+    pts
+};
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -138,5 +155,21 @@ mod tests {
                 assert!((q - e).abs() < 1e-14, "quad degree ({px},{py})");
             }
         }
+        for px in 0..=1 {
+            for py in 0..=1 {
+                let q: f64 = QUAD_NEWTON_COTES_2X2
+                    .iter()
+                    .map(|g| g.weight * g.st[0].powi(px) * g.st[1].powi(py))
+                    .sum();
+                let e = exact_1d(px) * exact_1d(py);
+                assert!((q - e).abs() < 1e-15, "Newton-Cotes degree ({px},{py})");
+            }
+        }
+        // Not exact for degree 2: on the square Σ ξ_q² = 4 instead of ∫ ξ² = 4/3.
+        let q2: f64 = QUAD_NEWTON_COTES_2X2
+            .iter()
+            .map(|g| g.weight * g.st[0].powi(2))
+            .sum();
+        assert!((q2 - 4.0).abs() < 1e-15);
     }
 }
