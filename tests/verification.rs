@@ -4,7 +4,10 @@
 //!   displacement field exactly (1e-10) and a uniform stress;
 //! * issue 2, acceptance 2 — a laterally confined column under self-weight matches the closed
 //!   form, and the errors fall at the expected rates under refinement (L2 displacement O(h²),
-//!   L2 stress O(h)).
+//!   L2 stress O(h));
+//! * issue 4, acceptance 1 — the hydrostatic resultant on the inclined upstream face of a dam
+//!   section equals ρ_w·g·h²/2 (horizontal) and ρ_w·g·h²·m/2 (vertical, the water wedge on a
+//!   1:m slope) per unit width, read from the reactions.
 //!
 //! MPI may be initialized once per process, so this file holds a single test that runs every
 //! check in turn.
@@ -155,6 +158,39 @@ fn column(petsc: &Petsc, nz: usize) -> (f64, f64, f64) {
     (h_col / nz as f64, (eu / nu2).sqrt(), (es / ns).sqrt())
 }
 
+/// Hydrostatic load alone (no gravity) on a 1:1.4 dam section, reservoir level at an element
+/// boundary so the 2×2 face quadrature integrates the linear pressure exactly: the reactions
+/// balance the water load, ΣR = −(ρ_w g h²/2, 0, −ρ_w g h² m/2)·L up to the sign of the face.
+fn hydrostatic_resultant(petsc: &Petsc) {
+    let (height, slope, length, nz) = (80.0, 1.4, 30.0, 8);
+    let level = height * 6.0 / nz as f64;
+    let text = format!(
+        "name: hydrostatic\nunits: SI\nmesh:\n  dam: {{ height: {height}, crest_width: 8.0, upstream_slope: {slope}, \
+         downstream_slope: 1.6, length: {length}, divisions: [10, 3, {nz}] }}\n\
+         materials:\n  fill: {{ model: elastic, young: 1.0e9, poisson: 0.25, density: 2000.0 }}\n\
+         blocks:\n  layer_1: {{ material: fill }}\n\
+         boundary:\n  - {{ set: base, fix: [x, y, z] }}\n  - {{ set: ymin, fix: [y] }}\n  - {{ set: ymax, fix: [y] }}\n\
+         loads:\n  hydrostatic:\n    - {{ faces: upstream, level: {level} }}\n"
+    );
+    let scene = Scene::from_str(&text, "hydrostatic", Path::new(".")).expect("scene");
+    let res = solve(petsc, &scene);
+    let sum = res
+        .reaction
+        .iter()
+        .fold([0.0; 3], |a, r| [a[0] + r[0], a[1] + r[1], a[2] + r[2]]);
+    let (rho_w_g, h) = (9810.0, level);
+    let fx = rho_w_g * h * h / 2.0 * length;
+    let fz = rho_w_g * h * h * slope / 2.0 * length;
+    let (ex, ez) = ((sum[0].abs() - fx).abs() / fx, (sum[2].abs() - fz).abs() / fz);
+    println!(
+        "hydrostatic resultant, h = {h} m, 1:{slope} face, L = {length} m: ΣR = ({:.6e}, {:.3e}, {:.6e}) N; \
+         ρw g h²/2·L = {fx:.6e}, ρw g h² m/2·L = {fz:.6e}; relative errors {ex:.1e}, {ez:.1e}",
+        sum[0], sum[1], sum[2]
+    );
+    assert!(ex < 1e-9 && ez < 1e-9, "resultant errors {ex:.2e} {ez:.2e}");
+    assert!(sum[1].abs() < 1e-9 * fx, "no force along the axis");
+}
+
 #[test]
 fn static_solver_verification() {
     let universe = mpi::initialize().expect("MPI");
@@ -162,6 +198,7 @@ fn static_solver_verification() {
     let petsc = Petsc::initialize(&world).expect("PETSc");
 
     patch_test(&petsc);
+    hydrostatic_resultant(&petsc);
 
     let runs: Vec<(f64, f64, f64)> = [2, 4, 8, 16].iter().map(|&nz| column(&petsc, nz)).collect();
     println!("confined column under self-weight (E = 50 MPa, ν = 0.3, H = 10 m):");

@@ -164,16 +164,15 @@ pub struct RockfillGpParams {
     /// Substepping options (spec §8.2).
     #[serde(default)]
     pub integration: SubstepOptions,
-    /// Tangent returned to Newton (spec §8.5): `continuum` D^ep at the end state, or
-    /// `numerical`, the forward-difference consistent tangent of the whole step (6 extra
-    /// integrations). Default `numerical`: load steps of a dam strain the fill by 10⁻³ from
-    /// near p_min, where the continuum tangent makes Newton converge only linearly.
-    #[serde(default = "default_numerical")]
+    /// Tangent returned to Newton (spec §8.5): `continuum` (default), D^ep at the end state, or
+    /// `numerical`, the central-difference consistent tangent of the whole step (12 extra
+    /// integrations). Use `numerical` in dam runs: a fill layer strained by 10⁻³ from near p_min
+    /// makes Newton converge only linearly with the continuum tangent (25 iterations reach
+    /// 10⁻³), quadratically with the numerical one (4–5 iterations to 10⁻¹⁰). The continuum
+    /// tangent stays the default because it keeps lab paths at η = 0 exactly isotropic in the
+    /// material-point driver, where the difference quotient straddles the cone apex.
+    #[serde(default)]
     pub tangent: TangentChoice,
-}
-
-fn default_numerical() -> TangentChoice {
-    TangentChoice::Numerical
 }
 
 impl Default for RockfillGpParams {
@@ -206,7 +205,7 @@ impl Default for RockfillGpParams {
             softening_guard: true,
             xi_rule: XiRule::default(),
             integration: SubstepOptions::default(),
-            tangent: default_numerical(),
+            tangent: TangentChoice::Continuum,
         }
     }
 }
@@ -756,27 +755,29 @@ pub fn deviatoric_invariant(eps: &Vector6) -> f64 {
 }
 
 impl RockfillGp {
-    /// Numerical consistent tangent (spec §8.5): forward differences of the stress with
+    /// Numerical consistent tangent (spec §8.5): central differences of the stress with
     /// respect to the strain increment, each re-integrated from the committed state,
     ///
     /// ```text
-    /// D_alg[:, j] = (σ(Δε + h·e_j) − σ(Δε))/h,   h = 10⁻⁷·max(‖Δε‖, 10⁻⁶)
+    /// D_alg[:, j] = (σ(Δε + h·e_j) − σ(Δε − h·e_j))/(2h),   h = 10⁻⁶·max(‖Δε‖, 10⁻⁶)
     /// ```
-    fn numerical_tangent(
-        &self,
-        prev: &RockfillGpState,
-        d_eps: &Strain6,
-        base: &RockfillGpState,
-    ) -> Result<Tangent6, MaterialError> {
-        let h = 1e-7 * d_eps.0.norm().max(1e-6);
+    ///
+    /// Central, not forward, differences: at η = 0 the response is not differentiable in the
+    /// deviatoric directions (the cone apex), and a one-sided quotient is lopsided there.
+    fn numerical_tangent(&self, prev: &RockfillGpState, d_eps: &Strain6) -> Result<Tangent6, MaterialError> {
+        let h = 1e-6 * d_eps.0.norm().max(1e-6);
         let start = self.to_point(prev);
+        let stress = |de: &Vector6| -> Result<Vector6, MaterialError> {
+            let res = integrate(self, &start, de, prev.branch, &self.params.integration)?;
+            Ok(Self::from_point(&res.point, res.last_branch).stress.0)
+        };
         let mut k = Matrix6::zeros();
         for j in 0..6 {
-            let mut de = d_eps.0;
-            de[j] += h;
-            let res = integrate(self, &start, &de, prev.branch, &self.params.integration)?;
-            let s = Self::from_point(&res.point, res.last_branch).stress.0;
-            k.set_column(j, &((s - base.stress.0) / h));
+            let mut plus = d_eps.0;
+            plus[j] += h;
+            let mut minus = d_eps.0;
+            minus[j] -= h;
+            k.set_column(j, &((stress(&plus)? - stress(&minus)?) / (2.0 * h)));
         }
         Ok(Tangent6(k))
     }
@@ -826,10 +827,10 @@ impl SolidModel for RockfillGp {
             Self::from_point(&res.point, res.last_branch)
         };
         let (tangent, kind) = match self.params.tangent {
-            TangentChoice::Numerical if res.substeps > 0 => (
-                self.numerical_tangent(prev, d_eps, &state)?,
-                TangentKind::Consistent,
-            ),
+            // at the tension cut-off the stress is pinned: keep the regular fallback tangent
+            TangentChoice::Numerical if res.substeps > 0 && !state.cut => {
+                (self.numerical_tangent(prev, d_eps)?, TangentKind::Consistent)
+            }
             _ => (Tangent6(res.tangent * 1.0e3), res.kind),
         };
         Ok(SolidUpdate {
@@ -1447,6 +1448,38 @@ mod tests {
             assert!(inv.p >= m.params.p_cutoff * (1.0 - 1e-12), "p = {}", inv.p);
             assert!(inv.q <= 3.0 * inv.p * (1.0 + 1e-9), "η cap");
         }
+    }
+
+    /// The `numerical` tangent is the consistent tangent of a large step (a fill layer strained by
+    /// 10⁻³ from 20 kPa): it matches an independent central difference of `update` to 10⁻⁵,
+    /// where the continuum tangent at the end state is far off (printed).
+    #[test]
+    fn numerical_tangent_is_consistent_for_large_steps() {
+        let cont = seed_model();
+        let num = model_with(|p| p.tangent = TangentChoice::Numerical);
+        let s = cont.init_state(&Stress6::isotropic(-20e3)).expect("p0 = 20 kPa");
+        let de = Vector6::new(-2e-4, -2e-4, -1e-3, 0.0, 1e-4, 0.0);
+        let up_n = num.update(&s, &Strain6(de)).expect("numerical");
+        let up_c = cont.update(&s, &Strain6(de)).expect("continuum");
+        assert_eq!(
+            up_n.state, up_c.state,
+            "the tangent choice does not change the state"
+        );
+        assert_eq!(up_n.kind, crate::material::TangentKind::Consistent);
+        let h = 3e-9;
+        let mut fd = Matrix6::zeros();
+        for j in 0..6 {
+            let mut e = Vector6::zeros();
+            e[j] = h;
+            let plus = cont.update(&s, &Strain6(de + e)).expect("plus").state.stress.0;
+            let minus = cont.update(&s, &Strain6(de - e)).expect("minus").state.stress.0;
+            fd.set_column(j, &((plus - minus) / (2.0 * h)));
+        }
+        let err_n = (fd - up_n.tangent.0).norm() / fd.norm();
+        let err_c = (fd - up_c.tangent.0).norm() / fd.norm();
+        println!("large step: numerical tangent error {err_n:.2e}, continuum tangent error {err_c:.2e}");
+        assert!(err_n < 1e-5, "numerical tangent error {err_n}");
+        assert!(err_c > 10.0 * err_n);
     }
 
     #[test]
