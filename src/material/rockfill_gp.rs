@@ -764,12 +764,21 @@ impl RockfillGp {
     ///
     /// Central, not forward, differences: at η = 0 the response is not differentiable in the
     /// deviatoric directions (the cone apex), and a one-sided quotient is lopsided there.
-    fn numerical_tangent(&self, prev: &RockfillGpState, d_eps: &Strain6) -> Result<Tangent6, MaterialError> {
+    ///
+    /// Returns `None` when a perturbed integration crosses the tension cut-off (spec §8.6): the
+    /// stress jumps there to p_min·I, so the quotient would be the jump divided by 2h (entries
+    /// ~10⁹ times the elastic stiffness) or zero, and the caller keeps the regular tangent.
+    fn numerical_tangent(
+        &self,
+        prev: &RockfillGpState,
+        d_eps: &Strain6,
+    ) -> Result<Option<Tangent6>, MaterialError> {
         let h = 1e-6 * d_eps.0.norm().max(1e-6);
         let start = self.to_point(prev);
-        let stress = |de: &Vector6| -> Result<Vector6, MaterialError> {
+        let stress = |de: &Vector6| -> Result<Option<Vector6>, MaterialError> {
             let res = integrate(self, &start, de, prev.branch, &self.params.integration)?;
-            Ok(Self::from_point(&res.point, res.last_branch).stress.0)
+            let state = Self::from_point(&res.point, res.last_branch);
+            Ok((!state.cut).then_some(state.stress.0))
         };
         let mut k = Matrix6::zeros();
         for j in 0..6 {
@@ -777,9 +786,12 @@ impl RockfillGp {
             plus[j] += h;
             let mut minus = d_eps.0;
             minus[j] -= h;
-            k.set_column(j, &((stress(&plus)? - stress(&minus)?) / (2.0 * h)));
+            match (stress(&plus)?, stress(&minus)?) {
+                (Some(sp), Some(sm)) => k.set_column(j, &((sp - sm) / (2.0 * h))),
+                _ => return Ok(None),
+            }
         }
-        Ok(Tangent6(k))
+        Ok(Some(Tangent6(k)))
     }
 }
 
@@ -826,12 +838,17 @@ impl SolidModel for RockfillGp {
         } else {
             Self::from_point(&res.point, res.last_branch)
         };
-        let (tangent, kind) = match self.params.tangent {
-            // at the tension cut-off the stress is pinned: keep the regular fallback tangent
+        // at (or within the difference stencil of) the tension cut-off the stress is pinned:
+        // keep the regular fallback tangent
+        let numerical = match self.params.tangent {
             TangentChoice::Numerical if res.substeps > 0 && !state.cut => {
-                (self.numerical_tangent(prev, d_eps)?, TangentKind::Consistent)
+                self.numerical_tangent(prev, d_eps)?
             }
-            _ => (Tangent6(res.tangent * 1.0e3), res.kind),
+            _ => None,
+        };
+        let (tangent, kind) = match numerical {
+            Some(t) => (t, TangentKind::Consistent),
+            None => (Tangent6(res.tangent * 1.0e3), res.kind),
         };
         Ok(SolidUpdate {
             state,
@@ -1480,6 +1497,39 @@ mod tests {
         println!("large step: numerical tangent error {err_n:.2e}, continuum tangent error {err_c:.2e}");
         assert!(err_n < 1e-5, "numerical tangent error {err_n}");
         assert!(err_c > 10.0 * err_n);
+    }
+
+    /// A step ending just above the tension cut-off, so that the difference stencil of the
+    /// numerical tangent crosses it: the tangent stays of the elastic order (the regular
+    /// fallback), not the stress jump divided by 2h (printed).
+    #[test]
+    fn numerical_tangent_next_to_the_cut_off_stays_bounded() {
+        let cont = seed_model();
+        let num = model_with(|p| p.tangent = TangentChoice::Numerical);
+        let s = num.init_state(&Stress6::isotropic(-50e3)).expect("p0 = 50 kPa");
+        let stretch = |e: f64| Strain6(Vector6::new(e, e, e, 0.0, 0.0, 0.0));
+        // largest isotropic stretch that does not cut off, by bisection to 1e-14 relative
+        let (mut lo, mut hi) = (0.0_f64, 1e-3_f64);
+        assert!(num.update(&s, &stretch(hi)).expect("hi").state.cut);
+        while hi - lo > 1e-14 * hi {
+            let mid = 0.5 * (lo + hi);
+            if num.update(&s, &stretch(mid)).expect("mid").state.cut {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
+        let up_n = num.update(&s, &stretch(lo)).expect("numerical");
+        let up_c = cont.update(&s, &stretch(lo)).expect("continuum");
+        assert!(!up_n.state.cut);
+        let p_end = -up_n.state.stress.0.fixed_rows::<3>(0).sum() / 3.0;
+        let ratio = up_n.tangent.0.norm() / up_c.tangent.0.norm();
+        println!(
+            "stretch {lo:.6e}: p = {p_end:.1} Pa (cut-off {:.1} Pa), |D_num|/|D_cont| = {ratio:.3e}",
+            num.params.p_cutoff
+        );
+        assert!(up_n.tangent.0.iter().all(|x| x.is_finite()));
+        assert!(ratio < 10.0, "tangent norm ratio {ratio}");
     }
 
     #[test]
