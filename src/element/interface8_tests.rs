@@ -390,23 +390,21 @@ fn pair_jumps(f: &LocalFrame, jumps: [[f64; 3]; 4]) -> Vector24 {
 }
 
 /// A 1 m × 1 m element on the 1:1.4 upstream slope, nodal rule, normal into the dam.
-fn unit_slope_element() -> (Coords8, Interface8Geometry) {
-    let x = slope_rectangle(1.0, 1.0);
-    let g = Interface8Geometry::new(
-        &x,
+fn unit_slope_element() -> Interface8Geometry {
+    Interface8Geometry::new(
+        &slope_rectangle(1.0, 1.0),
         &into_dam().into(),
         &FrameAxes::default(),
         InterfaceRule::NewtonCotes,
     )
-    .expect("valid");
-    (x, g)
+    .expect("valid")
 }
 
 /// The element tangent against central differences of the element residual, for every law,
 /// on the 1:1.4 slope element with a different state and jump at each point.
 #[test]
 fn element_tangent_matches_central_differences_for_every_law() {
-    let (x, g) = unit_slope_element();
+    let g = unit_slope_element();
     let f = g.frames[0];
     let mut report = Vec::new();
     let max = |e: &[f64; 4]| e.iter().copied().fold(0.0, f64::max);
@@ -762,7 +760,7 @@ fn el2_gauss_oscillates_next_to_a_stiff_block_newton_cotes_does_not() {
 /// state.
 #[test]
 fn el3_gp_interface_stiffness_scales_with_one_over_t() {
-    let (x, g) = unit_slope_element();
+    let g = unit_slope_element();
     let f = g.frames[0];
     let run = |basis: StiffnessBasis, t: f64, scale: f64| {
         let gp = GpInterface::new(GpInterfaceParams {
