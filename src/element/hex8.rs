@@ -346,7 +346,7 @@ pub fn face_pressure_load(x: &Coords8, face: usize, p: &[f64; 4]) -> Vector24 {
 mod tests {
     use super::*;
     use crate::element::shape::HEX8_REFERENCE_NODES;
-    use crate::tensor::{Matrix6, Vector6};
+    use crate::tensor::Vector6;
 
     /// A strongly distorted (non-parallelepiped, non-planar faces) but valid hex.
     fn distorted() -> Coords8 {
@@ -365,16 +365,7 @@ mod tests {
     /// An isotropic elastic D (E = 30 GPa, ν = 0.2), plus an optional non-symmetric part.
     fn elastic_d(nonsym: f64) -> Tangent6 {
         let (e, nu) = (30e9, 0.2);
-        let lam = e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
-        let mu = e / (2.0 * (1.0 + nu));
-        let mut d = Matrix6::zeros();
-        for i in 0..3 {
-            for j in 0..3 {
-                d[(i, j)] = lam;
-            }
-            d[(i, i)] += 2.0 * mu;
-            d[(i + 3, i + 3)] = mu;
-        }
+        let mut d = crate::material::elastic::isotropic_stiffness(e, nu);
         d[(0, 4)] += nonsym * e;
         d[(2, 3)] -= 0.5 * nonsym * e;
         Tangent6(d)

@@ -9,7 +9,7 @@ use crate::material::interface_hyperbolic::{HyperbolicInterface, HyperbolicParam
 use crate::material::interface_mc::{MohrCoulombInterface, MohrCoulombParams};
 use crate::material::joint::{JointLaw, JointParams};
 use crate::material::InterfaceModel;
-use crate::tensor::{Matrix6, Tangent6};
+use crate::tensor::Tangent6;
 use nalgebra::{DMatrix, DVector, Matrix3};
 use std::convert::Infallible;
 
@@ -504,17 +504,7 @@ fn element_tangent_matches_central_differences_for_every_law() {
 
 /// Isotropic elastic tangent (Pa).
 fn elastic(e: f64, nu: f64) -> Tangent6 {
-    let lam = e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
-    let mu = e / (2.0 * (1.0 + nu));
-    let mut d = Matrix6::zeros();
-    for i in 0..3 {
-        for j in 0..3 {
-            d[(i, j)] = lam;
-        }
-        d[(i, i)] += 2.0 * mu;
-        d[(i + 3, i + 3)] = mu;
-    }
-    Tangent6(d)
+    Tangent6(crate::material::elastic::isotropic_stiffness(e, nu))
 }
 
 /// Normal tractions t_n (Pa) along the interface of the EL-2 model, sorted by x, on the row of
