@@ -153,6 +153,7 @@ pub fn run_scene(
     })?;
     timer.stop();
     let n_stages = scene.stages.len();
+    let has_interfaces = scene.block_interface.iter().any(Option::is_some);
     let mut failure = None;
     for (k, stage) in scene.stages.iter().enumerate() {
         say(&format!(
@@ -185,10 +186,9 @@ pub fn run_scene(
             break;
         }
         timer.start(Phase::Output);
-        let written = problem
-            .results()
-            .map_err(|e| e.to_string())
-            .and_then(|res| write_step(&mut file, k, &stage.name, &res).map_err(|e| e.to_string()));
+        let written = problem.results().map_err(|e| e.to_string()).and_then(|res| {
+            write_step(&mut file, k, &stage.name, &res, has_interfaces).map_err(|e| e.to_string())
+        });
         any_error(world, written).map_err(|m| RunFailure {
             code: EXIT_SOLVER,
             message: format!("writing results: {m}"),
@@ -222,6 +222,13 @@ pub fn run_scene(
         report.cutbacks,
         report.ksp_iterations.iter().sum::<u32>()
     ));
+    let counts = problem.interface_counts();
+    if counts.points > 0 {
+        say(&format!(
+            "interfaces: {} point(s), {} open, {} slipping",
+            counts.points, counts.open, counts.slipping
+        ));
+    }
     timer.stop();
     drop(problem);
     drop(petsc);
@@ -237,6 +244,9 @@ pub fn run_scene(
     summary.steps = report.steps as u64;
     summary.cutbacks = report.cutbacks as u64;
     summary.newton_per_step = report.newton_per_step.clone();
+    summary.interface_points = counts.points;
+    summary.interface_open = counts.open;
+    summary.interface_slipping = counts.slipping;
     summary.gather_peak_memory(world);
     if rank == 0 {
         summary
@@ -263,6 +273,7 @@ fn write_step(
     k: usize,
     stage: &str,
     res: &LocalResults,
+    has_interfaces: bool,
 ) -> Result<(), crate::io::IoError> {
     file.begin_step(StepInfo {
         time: (k + 1) as f64,
@@ -275,7 +286,18 @@ fn write_step(
     let stress: Vec<f64> = res.stress.iter().flat_map(|s| s.0.iter().copied()).collect();
     file.write_element_field("stress", "Pa", 6, &stress)?;
     let strain: Vec<f64> = res.strain.iter().flat_map(strain_output_components).collect();
-    file.write_element_field("strain", "-", 6, &strain)
+    file.write_element_field("strain", "-", 6, &strain)?;
+    if has_interfaces {
+        // only a scene with interface or joint blocks writes their fields (zero on solids)
+        let traction: Vec<f64> = res.interface.iter().flat_map(|o| o.traction).collect();
+        file.write_element_field("interface_traction", "Pa", 3, &traction)?;
+        file.write_element_field("interface_jump", "m", 3, &flat3(&res.jump))?;
+        let slip: Vec<f64> = res.interface.iter().flat_map(|o| o.shear).collect();
+        file.write_element_field("interface_slip", "m", 2, &slip)?;
+        let opening: Vec<f64> = res.interface.iter().map(|o| o.opening).collect();
+        file.write_element_field("interface_opening", "m", 1, &opening)?;
+    }
+    Ok(())
 }
 
 /// The solver benchmark scene: the seed-like dam section (H = 171 m, slopes 1:1.4, crest 10 m)

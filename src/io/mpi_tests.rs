@@ -144,6 +144,7 @@ fn box_mesh(nx: usize, ny: usize, nz: usize) -> crate::mesh::Mesh {
         mesh.blocks.push(Block {
             name: name.to_string(),
             kind: ElementKind::Hex8,
+            orientation: None,
         });
     }
     mesh

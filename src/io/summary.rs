@@ -206,6 +206,15 @@ pub struct RunSummary {
     /// Newton iterations of each completed step.
     #[serde(default)]
     pub newton_per_step: Vec<u32>,
+    /// Interface and joint points of placed elements at the end of the run.
+    #[serde(default)]
+    pub interface_points: u64,
+    /// Of those, points that are open.
+    #[serde(default)]
+    pub interface_open: u64,
+    /// Of those, points slipping (on the plastic branch in their last update).
+    #[serde(default)]
+    pub interface_slipping: u64,
     /// Peak resident memory (bytes), maximum over ranks.
     pub peak_memory_bytes: u64,
     /// Peak resident memory (bytes) of each rank.
@@ -328,6 +337,9 @@ mod tests {
             steps: 3,
             cutbacks: 1,
             newton_per_step: vec![2, 2, 2],
+            interface_points: 16,
+            interface_open: 2,
+            interface_slipping: 3,
             peak_memory_bytes: 2048,
             peak_memory_bytes_per_rank: vec![1024, 2048],
         };

@@ -243,3 +243,75 @@ impl InterfaceParams {
         })
     }
 }
+
+/// Parameters of any model, as written in a scene's `materials` (`model:` tag): a solid model
+/// for hexahedral blocks or an interface/joint law for zero-thickness blocks.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
+#[serde(tag = "model", rename_all = "snake_case")]
+pub enum MaterialParams {
+    /// Isotropic linear elasticity (spec §6.3).
+    Elastic(elastic::ElasticParams),
+    /// Generalized-plasticity rockfill (spec §1).
+    RockfillGp(rockfill_gp::RockfillGpParams),
+    /// Clough–Duncan hyperbolic interface (spec §3).
+    Hyperbolic(interface_hyperbolic::HyperbolicParams),
+    /// Ideal elasto-plastic Mohr–Coulomb interface (spec §4).
+    MohrCoulomb(interface_mc::MohrCoulombParams),
+    /// Bilinear slab joint (spec §6.1).
+    Joint(joint::JointParams),
+    /// 3D generalized-plasticity interface (spec §2).
+    GpInterface(interface_gp::GpInterfaceParams),
+}
+
+/// A scene material sorted by what it applies to.
+#[derive(Debug, Clone, PartialEq)]
+pub enum BlockMaterial {
+    /// A solid model (hexahedral blocks).
+    Solid(SolidParams),
+    /// An interface or joint law (zero-thickness blocks).
+    Interface(InterfaceParams),
+}
+
+impl MaterialParams {
+    /// The solid or interface parameters.
+    pub fn split(&self) -> BlockMaterial {
+        match self {
+            MaterialParams::Elastic(p) => BlockMaterial::Solid(SolidParams::Elastic(p.clone())),
+            MaterialParams::RockfillGp(p) => BlockMaterial::Solid(SolidParams::RockfillGp(p.clone())),
+            MaterialParams::Hyperbolic(p) => BlockMaterial::Interface(InterfaceParams::Hyperbolic(p.clone())),
+            MaterialParams::MohrCoulomb(p) => {
+                BlockMaterial::Interface(InterfaceParams::MohrCoulomb(p.clone()))
+            }
+            MaterialParams::Joint(p) => BlockMaterial::Interface(InterfaceParams::Joint(p.clone())),
+            MaterialParams::GpInterface(p) => {
+                BlockMaterial::Interface(InterfaceParams::GpInterface(p.clone()))
+            }
+        }
+    }
+
+    /// Checks the parameters of the selected model.
+    pub fn validate(&self) -> Result<(), crate::error::ParamError> {
+        match self.split() {
+            BlockMaterial::Solid(p) => p.validate(),
+            BlockMaterial::Interface(p) => p.validate(),
+        }
+    }
+}
+
+impl BlockMaterial {
+    /// Mass density (kg/m³) of a solid; zero for a (zero-thickness) interface.
+    pub fn density(&self) -> f64 {
+        match self {
+            BlockMaterial::Solid(p) => p.density(),
+            BlockMaterial::Interface(_) => 0.0,
+        }
+    }
+
+    /// The `model:` tag.
+    pub fn name(&self) -> &'static str {
+        match self {
+            BlockMaterial::Solid(p) => p.name(),
+            BlockMaterial::Interface(p) => p.name(),
+        }
+    }
+}

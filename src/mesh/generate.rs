@@ -260,6 +260,7 @@ impl Grid {
             .map(|l| Block {
                 name: format!("layer_{l}"),
                 kind: ElementKind::Hex8,
+                orientation: None,
             })
             .collect();
         Mesh {

@@ -586,6 +586,7 @@ impl<'a> Reader<'a> {
                     self.mesh.blocks.push(Block {
                         name: name.clone(),
                         kind: ElementKind::Hex8,
+                        orientation: None,
                     });
                     (self.mesh.blocks.len() - 1) as u32
                 }
@@ -676,6 +677,21 @@ impl<'a> Reader<'a> {
             });
         }
         let lines = std::mem::take(&mut self.element_lines);
+        if let Err((block, element_id)) = self.mesh.classify_zero_thickness() {
+            let e = self
+                .mesh
+                .elements
+                .iter()
+                .position(|el| el.id == element_id)
+                .unwrap_or(0);
+            return Err(MeshError::Malformed {
+                at: Location::file_line(file, lines[e]),
+                reason: format!(
+                    "physical volume '{block}' mixes zero-thickness (interface) and solid hexahedra \
+                     (element {element_id} differs from the block's first element)"
+                ),
+            });
+        }
         check_all_elements(&self.mesh, &|e| Location::file_line(file, lines[e]))?;
         for (name, mut members) in std::mem::take(&mut self.node_set_members) {
             members.sort_unstable();

@@ -9,7 +9,7 @@
 
 use crate::element::hex8::{jacobian_determinants, volume, Coords8, HEX8_FACES};
 use crate::mesh::error::{Location, MeshError};
-use crate::mesh::Mesh;
+use crate::mesh::{ElementKind, Mesh};
 use std::collections::HashSet;
 
 /// Relative size under which a volume counts as zero: `|V| ≤ VOLUME_TOLERANCE · L³`, with `L`
@@ -104,9 +104,61 @@ pub fn check_element_geometry(
     Ok(())
 }
 
+/// Checks one zero-thickness interface element (spec §5.1): its 4 node pairs are distinct
+/// nodes at the same positions, and its face is a non-degenerate quadrilateral
+/// (`‖d₁ × d₂‖ > VOLUME_TOLERANCE · L²` for the diagonals d₁, d₂ of length up to L).
+pub fn check_interface_geometry(mesh: &Mesh, e: usize, at: &dyn Fn() -> Location) -> Result<(), MeshError> {
+    let el = &mesh.elements[e];
+    let bad = |detail: String| MeshError::DegenerateElement {
+        at: at(),
+        element_id: el.id,
+        detail,
+    };
+    for a in 0..8 {
+        for b in a + 1..8 {
+            if el.nodes[a] == el.nodes[b] {
+                return Err(bad(format!(
+                    "interface element: node {} appears twice (local nodes {a} and {b})",
+                    mesh.node_ids[el.nodes[a] as usize]
+                )));
+            }
+        }
+    }
+    if !mesh.zero_thickness(e) {
+        return Err(bad(
+            "interface element: node a + 4 is not at the position of node a (not zero-thickness)".into(),
+        ));
+    }
+    let x = mesh.element_coords(e);
+    let d1: [f64; 3] = std::array::from_fn(|i| x[2][i] - x[0][i]);
+    let d2: [f64; 3] = std::array::from_fn(|i| x[3][i] - x[1][i]);
+    let c = [
+        d1[1] * d2[2] - d1[2] * d2[1],
+        d1[2] * d2[0] - d1[0] * d2[2],
+        d1[0] * d2[1] - d1[1] * d2[0],
+    ];
+    let area2 = (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt();
+    let l2 = d1
+        .iter()
+        .map(|v| v * v)
+        .sum::<f64>()
+        .max(d2.iter().map(|v| v * v).sum::<f64>());
+    if !(area2.is_finite() && area2 > VOLUME_TOLERANCE * l2) {
+        return Err(bad(format!(
+            "interface element: face area {:.3e} m^2 is zero",
+            0.5 * area2
+        )));
+    }
+    Ok(())
+}
+
 /// Checks the geometry of every element; `locate(e)` gives the place of element `e` for messages.
 pub fn check_all_elements(mesh: &Mesh, locate: &dyn Fn(usize) -> Location) -> Result<(), MeshError> {
     for (e, element) in mesh.elements.iter().enumerate() {
+        if element.kind == ElementKind::Interface8 {
+            check_interface_geometry(mesh, e, &|| locate(e))?;
+            continue;
+        }
         check_element_geometry(
             &mesh.element_coords(e),
             &element.nodes,

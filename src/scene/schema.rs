@@ -2,7 +2,8 @@
 //! prints the JSON Schema generated from these types, so editors can validate and complete
 //! scene files and this documentation cannot fall out of date.
 
-use crate::material::SolidParams;
+use crate::element::interface8::InterfaceRule;
+use crate::material::MaterialParams;
 pub use crate::mesh::generate::{BoxSpec, DamSpec};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
@@ -23,7 +24,7 @@ pub struct SceneFile {
     #[serde(default)]
     pub partition: Option<PathBuf>,
     /// Materials by name.
-    pub materials: BTreeMap<String, SolidParams>,
+    pub materials: BTreeMap<String, MaterialParams>,
     /// Element blocks (mesh physical volumes) by name, each with its material. Every block of
     /// the mesh must be listed.
     pub blocks: BTreeMap<String, BlockSpec>,
@@ -74,8 +75,22 @@ pub struct MeshSource {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct BlockSpec {
-    /// Name of a material in `materials`.
+    /// Name of a material in `materials`: a solid model for a block of hexahedra, an interface
+    /// or joint law for a block of zero-thickness elements.
     pub material: String,
+    /// Interface blocks: the orientation vector n_ref, from the slab side (nodes 1–4) into the
+    /// cushion/dam side (nodes 5–8) (spec (E3)), e.g. `[1, 0, -1.4]` under an upstream slab.
+    /// Required unless the mesh generator sets it.
+    #[serde(default)]
+    pub orientation: Option<[f64; 3]>,
+    /// Interface blocks: integration rule, `newton_cotes` (nodal, default, spec (E8)) or
+    /// `gauss2x2`.
+    #[serde(default)]
+    pub rule: Option<InterfaceRule>,
+    /// Interface blocks: normal stress σ_n0 ≥ 0 (Pa, compression positive) of the points when
+    /// the block is placed (spec (E9), gap G5; default 0: placed without stress, like the fill).
+    #[serde(default)]
+    pub initial_normal_stress: Option<f64>,
 }
 
 /// Displacement component.

@@ -3,7 +3,10 @@
 use super::error::SceneError;
 use super::schema::{LoadsSpec, MeshSource, SceneFile};
 use super::term::Term;
-use crate::material::SolidParams;
+use crate::element::interface8::{Interface8Geometry, InterfaceRule};
+use crate::element::interface_frame::FrameAxes;
+use crate::material::{BlockMaterial, MaterialParams};
+use crate::mesh::ElementKind;
 use crate::mesh::{generate, Mesh};
 use std::path::{Path, PathBuf};
 
@@ -17,7 +20,9 @@ pub struct Scene {
     /// The mesh.
     pub mesh: Mesh,
     /// Material of every mesh block (indexed like `mesh.blocks`).
-    pub block_materials: Vec<SolidParams>,
+    pub block_materials: Vec<BlockMaterial>,
+    /// Options of every interface block (`None` for solid blocks; indexed like `mesh.blocks`).
+    pub block_interface: Vec<Option<InterfaceBlock>>,
     /// The stages, in order (one stage that places every block when the scene has none).
     pub stages: Vec<Stage>,
     /// Constrained DOFs: (node index, component, prescribed value), sorted and unique.
@@ -84,13 +89,73 @@ impl Scene {
                 ));
             }
         }
+        let mut block_interface = Vec::with_capacity(mesh.blocks.len());
         for b in &mesh.blocks {
-            match file.blocks.get(&b.name) {
-                Some(spec) => block_materials.push(file.materials[&spec.material].clone()),
-                None => {
+            let Some(spec) = file.blocks.get(&b.name) else {
+                return Err(inv(
+                    "blocks",
+                    format!("mesh block '{}' has no material assigned", b.name),
+                ));
+            };
+            let material = file.materials[&spec.material].split();
+            let path = format!("blocks.{}", b.name);
+            block_interface.push(match (b.kind, &material) {
+                (ElementKind::Hex8, BlockMaterial::Solid(_)) => {
+                    for (given, key) in [
+                        (spec.orientation.is_some(), "orientation"),
+                        (spec.rule.is_some(), "rule"),
+                        (spec.initial_normal_stress.is_some(), "initial_normal_stress"),
+                    ] {
+                        if given {
+                            return Err(inv(
+                                &format!("{path}.{key}"),
+                                format!("'{}' is a block of solid elements; {key} applies to interface blocks only", b.name),
+                            ));
+                        }
+                    }
+                    None
+                }
+                (ElementKind::Interface8, BlockMaterial::Interface(_)) => {
+                    Some(interface_block(&mesh, b.name.as_str(), spec, &path, &inv)?)
+                }
+                (ElementKind::Hex8, BlockMaterial::Interface(p)) => {
                     return Err(inv(
-                        "blocks",
-                        format!("mesh block '{}' has no material assigned", b.name),
+                        &format!("{path}.material"),
+                        format!(
+                            "'{}' is an interface law ({}) but block '{}' has solid (non-zero-thickness) elements",
+                            spec.material,
+                            p.name(),
+                            b.name
+                        ),
+                    ))
+                }
+                (ElementKind::Interface8, BlockMaterial::Solid(p)) => {
+                    return Err(inv(
+                        &format!("{path}.material"),
+                        format!(
+                            "'{}' is a solid model ({}) but block '{}' has zero-thickness (interface) elements; \
+                             give an interface or joint law (hyperbolic, mohr_coulomb, joint, gp_interface)",
+                            spec.material,
+                            p.name(),
+                            b.name
+                        ),
+                    ))
+                }
+            });
+            block_materials.push(material);
+        }
+        // every interface element must have a usable geometry for its block's orientation
+        for (e, el) in mesh.elements.iter().enumerate() {
+            if let Some(ib) = &block_interface[el.block as usize] {
+                if let Err(err) = Interface8Geometry::new(
+                    &mesh.element_coords(e),
+                    &ib.orientation,
+                    &FrameAxes::default(),
+                    ib.rule,
+                ) {
+                    return Err(inv(
+                        &format!("blocks.{}", mesh.blocks[el.block as usize].name),
+                        format!("interface element {}: {err}", el.id),
                     ));
                 }
             }
@@ -193,12 +258,65 @@ impl Scene {
             source: source.to_string(),
             mesh,
             block_materials,
+            block_interface,
             stages,
             fixed,
             hash: fnv1a(text.as_bytes()),
             base: base.to_path_buf(),
         })
     }
+}
+
+/// Options of an interface block, resolved from the scene and the mesh.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct InterfaceBlock {
+    /// Orientation vector n_ref, from the slab side into the cushion side (spec (E3)).
+    pub orientation: [f64; 3],
+    /// Integration rule (spec (E8)).
+    pub rule: InterfaceRule,
+    /// Normal stress σ_n0 (Pa, compression positive) of the points when placed (spec (E9)).
+    pub initial_normal_stress: f64,
+}
+
+/// Resolves the options of interface block `name`.
+fn interface_block(
+    mesh: &Mesh,
+    name: &str,
+    spec: &super::schema::BlockSpec,
+    path: &str,
+    inv: &dyn Fn(&str, String) -> SceneError,
+) -> Result<InterfaceBlock, SceneError> {
+    let from_mesh = mesh
+        .block_index(name)
+        .and_then(|b| mesh.blocks[b as usize].orientation);
+    let Some(orientation) = spec.orientation.or(from_mesh) else {
+        return Err(inv(
+            &format!("{path}.orientation"),
+            format!(
+                "block '{name}' has zero-thickness (interface) elements: give its orientation vector \
+                 from the slab side (nodes 1-4) into the cushion side (nodes 5-8), e.g. [1, 0, -1.4]"
+            ),
+        ));
+    };
+    let n = orientation.iter().map(|v| v * v).sum::<f64>().sqrt();
+    if !(n.is_finite() && n > 0.0) {
+        return Err(inv(
+            &format!("{path}.orientation"),
+            format!("must be a finite non-zero vector, got {orientation:?}"),
+        ));
+    }
+    let sigma0 = spec.initial_normal_stress.unwrap_or(0.0);
+    if !(sigma0.is_finite() && sigma0 >= 0.0) {
+        return Err(inv(
+            &format!("{path}.initial_normal_stress"),
+            format!("must be finite and ≥ 0 (Pa, compression positive), got {sigma0}"),
+        ));
+    }
+    Ok(InterfaceBlock {
+        orientation,
+        rule: spec.rule.unwrap_or_default(),
+        initial_normal_stress: sigma0,
+    })
 }
 
 /// One resolved stage: blocks placed at its start, the loads at its end, and its load steps.
@@ -293,7 +411,7 @@ fn check_values(f: &SceneFile, inv: &dyn Fn(&str, String) -> SceneError) -> Resu
     for (name, m) in &f.materials {
         m.validate()
             .map_err(|e| inv(&format!("materials.{name}.{}", e.field), e.reason))?;
-        if let SolidParams::Elastic(p) = m {
+        if let MaterialParams::Elastic(p) = m {
             if !(1.0e5..=1.0e13).contains(&p.young) {
                 return Err(inv(
                     &format!("materials.{name}.young"),
@@ -304,7 +422,10 @@ fn check_values(f: &SceneFile, inv: &dyn Fn(&str, String) -> SceneError) -> Resu
                 ));
             }
         }
-        let rho = m.density();
+        let BlockMaterial::Solid(solid) = m.split() else {
+            continue;
+        };
+        let rho = solid.density();
         if !(100.0..=30_000.0).contains(&rho) {
             return Err(inv(
                 &format!("materials.{name}.density"),

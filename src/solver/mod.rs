@@ -1,6 +1,7 @@
 //! Solvers: integration-point storage, solid blocks, the rank-local discretization and the
 //! static Newton solver.
 
+pub mod interface;
 pub mod qp_store;
 pub mod solid;
 

@@ -8,9 +8,13 @@
 //! in the system (block size 3 for algebraic multigrid) with unit rows and columns.
 
 use super::discretization::Discretization;
+use super::interface::{InterfaceElementOutput, InterfaceElements};
 use super::solid::{SolidBlock, Vector24};
 use crate::element::hex8::{face_pressure_load, gravity_load, Hex8Geometry};
+use crate::element::interface8::Interface8Geometry;
+use crate::element::interface_frame::FrameAxes;
 use crate::linalg::petsc::{Gather, Ksp, Matrix, Petsc, SolveStats, Vector};
+use crate::material::BlockMaterial;
 use crate::mesh::Mesh;
 use crate::parallel::{any_error, sum_f64, sum_u64};
 use crate::scene::schema::PlacedNodes;
@@ -126,13 +130,61 @@ pub struct LocalResults {
     pub stress: Vec<Stress6>,
     /// Mean strain of each owned element (engineering shear, tension positive).
     pub strain: Vec<Strain6>,
+    /// Interface output of each owned element (zero for solid elements).
+    pub interface: Vec<InterfaceElementOutput>,
+    /// Mean local jump (δ_s, δ_a, δ_n) of each owned interface element since its placement (m;
+    /// zero for solid elements), spec (E4), (E9).
+    pub jump: Vec<[f64; 3]>,
+}
+
+/// The elements of one block on this rank with their model and states.
+#[derive(Debug, Clone)]
+pub enum BlockStates {
+    /// Hexahedra with a solid model.
+    Solid(SolidBlock),
+    /// Zero-thickness interface or joint elements with an interface law.
+    Interface(InterfaceElements),
+}
+
+impl BlockStates {
+    fn symmetric_tangent(&self) -> bool {
+        match self {
+            BlockStates::Solid(b) => b.symmetric_tangent(),
+            BlockStates::Interface(b) => b.symmetric_tangent(),
+        }
+    }
+    fn commit(&mut self) {
+        match self {
+            BlockStates::Solid(b) => b.commit(),
+            BlockStates::Interface(b) => b.commit(),
+        }
+    }
+    fn revert(&mut self) {
+        match self {
+            BlockStates::Solid(b) => b.revert(),
+            BlockStates::Interface(b) => b.revert(),
+        }
+    }
+}
+
+/// Counts of interface points in the committed state (all ranks).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
+pub struct InterfaceCounts {
+    /// Interface and joint points of placed elements.
+    pub points: u64,
+    /// Points that are open.
+    pub open: u64,
+    /// Points on the plastic (slipping) branch.
+    pub slipping: u64,
 }
 
 /// The static problem on this rank: discretization, PETSc objects and material states.
 pub struct StaticProblem<'a> {
     scene: &'a Scene,
     disc: Discretization,
-    blocks: Vec<SolidBlock>,
+    blocks: Vec<BlockStates>,
+    /// Geometry of every owned interface element (`None` for solid elements).
+    iface_geo: Vec<Option<Interface8Geometry>>,
     /// For every owned element: (block, index within the block's owned elements).
     elem_block: Vec<(usize, usize)>,
     /// Fixed DOFs owned by this rank: (global dof, prescribed value).
@@ -200,13 +252,38 @@ impl<'a> StaticProblem<'a> {
         let blocks = scene
             .block_materials
             .iter()
+            .zip(&scene.block_interface)
             .zip(&per_block)
-            .map(|(p, &n)| SolidBlock::new(p, n))
+            .map(|((m, ib), &n)| match (m, ib) {
+                (BlockMaterial::Solid(p), _) => SolidBlock::new(p, n).map(BlockStates::Solid),
+                (BlockMaterial::Interface(p), Some(ib)) => {
+                    InterfaceElements::new(p, n, ib.initial_normal_stress).map(BlockStates::Interface)
+                }
+                (BlockMaterial::Interface(p), None) => {
+                    InterfaceElements::new(p, n, 0.0).map(BlockStates::Interface)
+                }
+            })
             .collect::<Result<Vec<_>, _>>()
             .map_err(|e| SolveError::Material {
                 element: 0,
                 reason: e.reason,
             })?;
+        let mut iface_geo = Vec::with_capacity(disc.owned_elements.len());
+        for &e in &disc.owned_elements {
+            let el = &mesh.elements[e as usize];
+            iface_geo.push(match &scene.block_interface[el.block as usize] {
+                None => None,
+                Some(ib) => Some(
+                    Interface8Geometry::new(
+                        &mesh.element_coords(e as usize),
+                        &ib.orientation,
+                        &FrameAxes::default(),
+                        ib.rule,
+                    )
+                    .map_err(|_| SolveError::Geometry { element: el.id })?,
+                ),
+            });
+        }
 
         // the scene's displacement conditions on owned DOFs; nodes outside the placed elements
         // are added per stage (begin_stage)
@@ -252,7 +329,7 @@ impl<'a> StaticProblem<'a> {
         let gather = Gather::new(&u, &disc.local_dofs)?;
         let gather_committed = Gather::new(&u, &disc.local_dofs)?;
         // the non-associated GP models have non-symmetric tangents: CG only when all are symmetric
-        let symmetric = blocks.iter().all(SolidBlock::symmetric_tangent);
+        let symmetric = blocks.iter().all(BlockStates::symmetric_tangent);
         let mut ksp = Ksp::new(
             petsc,
             scene.file.solver.rtol,
@@ -270,6 +347,7 @@ impl<'a> StaticProblem<'a> {
             scene,
             disc,
             blocks,
+            iface_geo,
             elem_block,
             fixed: Vec::new(),
             scene_fixed,
@@ -388,7 +466,7 @@ impl<'a> StaticProblem<'a> {
                 Term::Gravity { g } => {
                     for &e in &self.disc.owned_elements {
                         let e = e as usize;
-                        if !owned_elem[e] {
+                        if !owned_elem[e] || mesh.is_interface(e) {
                             continue;
                         }
                         let rho = self.scene.block_materials[mesh.elements[e].block as usize].density();
@@ -454,13 +532,10 @@ impl<'a> StaticProblem<'a> {
         let mut local = Ok(());
         for (i, &e) in self.disc.owned_elements.iter().enumerate() {
             let e = e as usize;
-            let x = mesh.element_coords(e);
-            let Ok(geo) = Hex8Geometry::new(&x) else {
-                local = Err(SolveError::Geometry {
-                    element: mesh.elements[e].id,
-                });
-                break;
-            };
+            let (b, be) = self.elem_block[i];
+            if !self.active_block[b] {
+                continue;
+            }
             let loc = &self.disc.element_local[i];
             let mut d_u = Vector24::zeros();
             for a in 0..8 {
@@ -470,12 +545,25 @@ impl<'a> StaticProblem<'a> {
                     rows[3 * a + c] = self.disc.local_dofs[l];
                 }
             }
-            let (b, be) = self.elem_block[i];
-            if !self.active_block[b] {
-                continue;
-            }
-            let resp = match self.blocks[b].evaluate(be, &geo, &d_u, want_k) {
-                Ok(resp) => resp,
+            let evaluated = match &mut self.blocks[b] {
+                BlockStates::Solid(block) => {
+                    let Ok(geo) = Hex8Geometry::new(&mesh.element_coords(e)) else {
+                        local = Err(SolveError::Geometry {
+                            element: mesh.elements[e].id,
+                        });
+                        break;
+                    };
+                    block.evaluate(be, &geo, &d_u, want_k).map(|r| (r.f_int, r.k))
+                }
+                BlockStates::Interface(block) => {
+                    let geo = self.iface_geo[i]
+                        .as_ref()
+                        .expect("interface geometry built at set-up");
+                    block.evaluate(be, geo, &d_u, want_k).map(|r| (r.f_int, r.k))
+                }
+            };
+            let (fe, ke) = match evaluated {
+                Ok(r) => r,
                 Err(m) => {
                     local = Err(SolveError::Material {
                         element: mesh.elements[e].id,
@@ -484,8 +572,8 @@ impl<'a> StaticProblem<'a> {
                     break;
                 }
             };
-            f_int.set_values(&rows, resp.f_int.as_slice(), true)?;
-            if let Some(ke) = resp.k {
+            f_int.set_values(&rows, fe.as_slice(), true)?;
+            if let Some(ke) = ke {
                 diag_sum += ke.diagonal().iter().map(|v| v.abs()).sum::<f64>();
                 diag_n += 24;
                 // nalgebra is column-major: the transpose's storage is the row-major block
@@ -667,6 +755,28 @@ impl<'a> StaticProblem<'a> {
         })
     }
 
+    /// Counts the interface points of placed elements that are open or slipping in the
+    /// committed state, over all ranks (collective).
+    pub fn interface_counts(&self) -> InterfaceCounts {
+        let (mut points, mut open, mut slipping) = (0u64, 0u64, 0u64);
+        for (i, &(b, be)) in self.elem_block.iter().enumerate() {
+            if let (true, BlockStates::Interface(block), Some(geo)) =
+                (self.active_block[b], &self.blocks[b], &self.iface_geo[i])
+            {
+                let o = block.output(be);
+                points += geo.area_w.len() as u64;
+                open += o.open_points as u64;
+                slipping += o.plastic_points as u64;
+            }
+        }
+        let world = SimpleCommunicator::world();
+        InterfaceCounts {
+            points: sum_u64(&world, points),
+            open: sum_u64(&world, open),
+            slipping: sum_u64(&world, slipping),
+        }
+    }
+
     /// Collects the rank-local results (owned nodes and elements) at the committed state.
     pub fn results(&mut self) -> Result<LocalResults, SolveError> {
         let mesh = &self.scene.mesh;
@@ -705,24 +815,42 @@ impl<'a> StaticProblem<'a> {
         let u_loc: Vec<f64> = self.gather.gather(&self.u)?.read(|s| s.to_vec())?;
         out.elements = self.disc.owned_elements.clone();
         for (i, &e) in self.disc.owned_elements.iter().enumerate() {
-            let geo =
-                Hex8Geometry::new(&mesh.element_coords(e as usize)).map_err(|_| SolveError::Geometry {
-                    element: mesh.elements[e as usize].id,
-                })?;
             let (b, be) = self.elem_block[i];
-            if !self.active_block[b] {
-                out.strain.push(Strain6::default());
-                out.stress.push(Stress6::default());
-                continue;
-            }
             let loc = &self.disc.element_local[i];
             let ue = Vector24::from_fn(|k, _| u_loc[3 * loc[k / 3] as usize + k % 3]) - self.elem_ref[i];
-            let eps = geo.strain_increments(&ue);
-            out.strain.push(
-                eps.iter()
-                    .fold(Strain6::default(), |a, s| Strain6(a.0 + s.0 / 8.0)),
-            );
-            out.stress.push(self.blocks[b].mean_stress(be));
+            let (mut strain, mut stress) = (Strain6::default(), Stress6::default());
+            let (mut iface, mut jump) = (InterfaceElementOutput::default(), [0.0; 3]);
+            match &self.blocks[b] {
+                _ if !self.active_block[b] => {}
+                BlockStates::Solid(block) => {
+                    let geo = Hex8Geometry::new(&mesh.element_coords(e as usize)).map_err(|_| {
+                        SolveError::Geometry {
+                            element: mesh.elements[e as usize].id,
+                        }
+                    })?;
+                    let eps = geo.strain_increments(&ue);
+                    strain = eps
+                        .iter()
+                        .fold(Strain6::default(), |a, s| Strain6(a.0 + s.0 / 8.0));
+                    stress = block.mean_stress(be);
+                }
+                BlockStates::Interface(block) => {
+                    let geo = self.iface_geo[i]
+                        .as_ref()
+                        .expect("interface geometry built at set-up");
+                    let w = 1.0 / geo.area_w.len() as f64;
+                    for j in geo.jumps(&ue) {
+                        for c in 0..3 {
+                            jump[c] += w * j[c];
+                        }
+                    }
+                    iface = block.output(be);
+                }
+            }
+            out.strain.push(strain);
+            out.stress.push(stress);
+            out.interface.push(iface);
+            out.jump.push(jump);
         }
         Ok(out)
     }
