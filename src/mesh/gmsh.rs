@@ -1052,10 +1052,11 @@ mod tests {
                 "node 12 appears twice",
             ],
         );
-        // A flat element: all nodes within 1e-12 m of the plane z = 0.
+        // A flat element: all nodes within 1e-12 m of the plane x = 0 (its node pairs a, a + 4
+        // stay apart, so it is not a zero-thickness interface element).
         let mut flat = V22.to_string();
-        for (id, xy) in [(7, "0 0"), (8, "1 0"), (10, "0 1"), (11, "1 1")] {
-            flat = replace_line(&flat, &format!("{id} {xy} 1"), &format!("{id} {xy} 1e-12"));
+        for (id, yz) in [(2, "0 0"), (5, "1 0"), (8, "0 1"), (11, "1 1")] {
+            flat = replace_line(&flat, &format!("{id} 1 {yz}"), &format!("{id} 1e-12 {yz}"));
         }
         let msg = error_of(&flat, "flat.msh");
         assert_names(
@@ -1066,6 +1067,28 @@ mod tests {
                 "volume",
             ],
         );
+    }
+
+    #[test]
+    fn zero_thickness_blocks_become_interface_blocks() {
+        // element 8 (block 'left') with its top face moved onto its bottom face: nodes 5-8 of
+        // the hexahedron pair with nodes 1-4, a zero-thickness interface element
+        let mut text = V22.replace("8 5 2 6 1 1 2 5 4 7 8 11 10", "8 5 2 6 1 1 2 5 4 13 14 15 16");
+        text = text.replace("$Nodes\n12\n", "$Nodes\n16\n");
+        text = text.replace(
+            "12 2 1 1\n$EndNodes",
+            "12 2 1 1\n13 0 0 0\n14 1 0 0\n15 1 1 0\n16 0 1 0\n$EndNodes",
+        );
+        let m = parse_gmsh(&text, "iface.msh").expect("a zero-thickness block is valid");
+        let left = m.block_index("left").unwrap() as usize;
+        let right = m.block_index("right").unwrap() as usize;
+        assert_eq!(m.blocks[left].kind, ElementKind::Interface8);
+        assert_eq!(m.blocks[right].kind, ElementKind::Hex8);
+        assert!(m.is_interface(0) && !m.is_interface(1));
+        // the same block mixing a solid hexahedron is refused, naming the block and element
+        let mixed = text.replace("9 5 2 7 2 2 3 6 5 8 9 12 11", "9 5 2 6 2 2 3 6 5 8 9 12 11");
+        let msg = error_of(&mixed, "mixed.msh");
+        assert_names(&msg, &["mixed.msh:", "'left' mixes zero-thickness", "element 9"]);
     }
 
     #[test]
