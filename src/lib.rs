@@ -18,6 +18,7 @@
 //! | `run` | the `cfrd run` pipeline (feature `native`) |
 //! | [`point`] | `cfrd point`: material-point tests from YAML, CSV and PNG output |
 //! | [`plot`] | PNG line plots (figures of point tests and dam outputs) |
+//! | [`profiles`] | the seed's static outputs (Figs. 7–11): slab, interface and dam profiles, probes |
 //!
 //! The native parallel stack (MPI, PETSc, parallel HDF5, METIS) is behind the default
 //! `native` feature; the constitutive library, the mesh code and the element kernels build
@@ -36,6 +37,7 @@ pub mod mesh;
 pub mod parallel;
 pub mod plot;
 pub mod point;
+pub mod profiles;
 #[cfg(feature = "native")]
 pub mod run;
 pub mod scene;

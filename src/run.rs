@@ -209,6 +209,23 @@ pub fn run_scene(
         code: EXIT_SOLVER,
         message: format!("writing results: {m}"),
     })?;
+    if let Some(spec) = &scene.file.output.profiles {
+        // rank 0 reads the closed results file back (serial HDF5) and writes the tables and plots
+        let written = if rank == 0 {
+            write_profiles_from_results(scene, spec, &h5, &out_dir)
+        } else {
+            Ok(Vec::new())
+        };
+        let files = any_error(world, written).map_err(|m| RunFailure {
+            code: EXIT_SOLVER,
+            message: format!("writing the profiles: {m}"),
+        })?;
+        say(&format!(
+            "profiles: {} file(s) in {}",
+            files.len(),
+            out_dir.display()
+        ));
+    }
     if let Some(m) = failure {
         return Err(RunFailure {
             code: EXIT_SOLVER,
@@ -298,6 +315,48 @@ fn write_step(
         file.write_element_field("interface_opening", "m", 1, &opening)?;
     }
     Ok(())
+}
+
+/// Reads every stage of a closed results file (serial HDF5) and writes the profile tables and
+/// plots of [`crate::profiles`] into `dir`.
+pub fn write_profiles_from_results(
+    scene: &Scene,
+    spec: &crate::profiles::ProfilesSpec,
+    h5: &Path,
+    dir: &Path,
+) -> Result<Vec<PathBuf>, String> {
+    let file = hdf5::File::open(h5).map_err(|e| format!("{}: {e}", h5.display()))?;
+    let steps = file
+        .group("/steps")
+        .map_err(|e| format!("{}: /steps: {e}", h5.display()))?;
+    let mut names = steps.member_names().map_err(|e| e.to_string())?;
+    names.sort();
+    let mut stages = Vec::with_capacity(names.len());
+    for name in names {
+        let g = steps.group(&name).map_err(|e| e.to_string())?;
+        let read = |field: &str| -> Result<Vec<f64>, String> {
+            if !g.link_exists(field) {
+                return Ok(Vec::new());
+            }
+            g.dataset(field)
+                .and_then(|d| d.read_raw::<f64>())
+                .map_err(|e| format!("{}: /steps/{name}/{field}: {e}", h5.display()))
+        };
+        let stage = g
+            .attr("stage")
+            .and_then(|a| a.read_scalar::<hdf5::types::VarLenUnicode>())
+            .map(|s| s.to_string())
+            .unwrap_or_else(|_| name.clone());
+        stages.push(crate::profiles::StageFields {
+            name: stage,
+            displacement: read("displacement")?,
+            stress: read("stress")?,
+            interface_traction: read("interface_traction")?,
+            interface_jump: read("interface_jump")?,
+            interface_opening: read("interface_opening")?,
+        });
+    }
+    crate::profiles::write_profiles(&scene.mesh, spec, &stages, dir).map_err(|e| e.to_string())
 }
 
 /// The solver benchmark scene: the seed-like dam section (H = 171 m, slopes 1:1.4, crest 10 m)

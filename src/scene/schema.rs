@@ -276,6 +276,11 @@ pub struct OutputSpec {
     /// (scenes with `stages` only; the solution itself does not depend on it).
     #[serde(default)]
     pub placed_nodes: PlacedNodes,
+    /// CSV tables and PNG plots of the seed's static outputs (Figs. 7–11: dam displacement,
+    /// slab stresses and deflection, interface jumps, probe stress paths) written into the
+    /// output directory at the end of the run; see [`crate::profiles`]. Absent: not written.
+    #[serde(default)]
+    pub profiles: Option<crate::profiles::ProfilesSpec>,
 }
 
 /// Zero of the reported displacement of nodes placed by a construction stage.
@@ -301,6 +306,7 @@ impl Default for OutputSpec {
         OutputSpec {
             dir: out_dir(),
             placed_nodes: PlacedNodes::default(),
+            profiles: None,
         }
     }
 }

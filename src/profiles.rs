@@ -1,0 +1,642 @@
+//! The seed paper's static outputs from a run's stage results (seed Figs. 7–11): profiles at
+//! the central section of the slab, the interface under it and the dam body, and the stress
+//! path of named interface probes through the stages. CSV tables and PNG plots.
+//!
+//! What is where:
+//!
+//! | output | seed figure | file |
+//! |---|---|---|
+//! | settlement and horizontal displacement on the vertical through the crest centre, end of construction and after impoundment | 7 | `fig07_dam_displacement.csv/.png` |
+//! | slab stress along the slope σ_s and along the axis σ_a vs elevation, end of construction and after impoundment | 8 | `fig08_slab_stress.csv/.png` |
+//! | slab deflection (normal to the slab, towards the dam positive) vs elevation | 9 | `fig09_slab_deflection.csv/.png` |
+//! | σ_n–τ path and shear displacement vs stress ratio of each probe interface element through the stages | 10 | `fig10_probe_NAME.csv/.png` |
+//! | interface jumps, tractions and opening vs elevation after impoundment | 11 | `fig11_interface.csv/.png` |
+//!
+//! Conventions (documented choices, [INF]):
+//! * **Slab and interface elements** are the elements of the blocks whose names start with
+//!   [`ProfilesSpec::slab_prefix`] (solid) and [`ProfilesSpec::interface_prefix`] (interface).
+//! * **Central section**: the plane y = [`ProfilesSpec::section_y`], by default the middle of the
+//!   slab's y-range; an element is in the section when its y-range contains the plane; elements
+//!   at the same elevation (both sides of a node line) are averaged.
+//! * **Slab frame**: the slab normal is the element's thinnest direction (one element through
+//!   the thickness), oriented towards +x (into the dam for an upstream face with x downstream);
+//!   the in-plane axes follow the interface frame rule (spec (E3)): e_s up-slope, e_a along the
+//!   dam axis. σ_s = e_sᵀσe_s, σ_a = e_aᵀσe_a, tension positive (project convention).
+//! * **Deflection** is the mean displacement of the element's nodes along the slab normal
+//!   (towards the dam positive), counted from the slab's placement.
+//! * **End of construction** is the last stage whose name does not start with
+//!   [`ProfilesSpec::impoundment_prefix`]; **after impoundment** is the last stage.
+
+use crate::element::interface_frame::{FrameAxes, LocalFrame};
+use crate::mesh::Mesh;
+use crate::plot::{Figure, Panel, PlotError, Series};
+use nalgebra::{Matrix3, Vector3};
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// Scene settings of the profile outputs (`output.profiles`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct ProfilesSpec {
+    /// Solid blocks whose names start with this are the face slab (default `slab`).
+    pub slab_prefix: String,
+    /// Interface blocks whose names start with this are the slab–cushion interface (default
+    /// `interface`).
+    pub interface_prefix: String,
+    /// Stages whose names start with this belong to the impoundment (default `impound`).
+    pub impoundment_prefix: String,
+    /// y of the central section (m); default: the middle of the slab's y-range.
+    pub section_y: Option<f64>,
+    /// Named interface elements followed through the stages (seed Fig. 10, element I-A).
+    pub probes: Vec<Probe>,
+}
+
+impl Default for ProfilesSpec {
+    fn default() -> Self {
+        ProfilesSpec {
+            slab_prefix: "slab".into(),
+            interface_prefix: "interface".into(),
+            impoundment_prefix: "impound".into(),
+            section_y: None,
+            probes: Vec::new(),
+        }
+    }
+}
+
+/// An interface element followed through the stages: the one in the central section whose
+/// centre is nearest to `elevation`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Probe {
+    /// Name (used in file names), e.g. `I-A`.
+    pub name: String,
+    /// Elevation z of the element (m, mesh coordinates).
+    pub elevation: f64,
+}
+
+/// The fields of one stage in global input order (as in the results file).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct StageFields {
+    /// Stage name.
+    pub name: String,
+    /// Node displacement, 3 per node (m).
+    pub displacement: Vec<f64>,
+    /// Element mean stress, 6 per element, Voigt `[xx, yy, zz, xy, yz, zx]` (Pa, tension +).
+    pub stress: Vec<f64>,
+    /// Interface mean traction (τ_s, τ_a, t_n), 3 per element (Pa); empty without interfaces.
+    pub interface_traction: Vec<f64>,
+    /// Interface mean jump (δ_s, δ_a, δ_n) since placement, 3 per element (m).
+    pub interface_jump: Vec<f64>,
+    /// Interface mean opening, 1 per element (m).
+    pub interface_opening: Vec<f64>,
+}
+
+/// One elevation of the slab profile.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SlabRow {
+    /// Elevation of the element centres (m).
+    pub z: f64,
+    /// Stress along the slope σ_s (Pa, tension +).
+    pub sigma_slope: f64,
+    /// Stress along the dam axis σ_a (Pa, tension +).
+    pub sigma_axis: f64,
+    /// Deflection along the slab normal, towards the dam positive (m).
+    pub deflection: f64,
+}
+
+/// One elevation of the interface profile.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct InterfaceRow {
+    /// Elevation of the element centres (m).
+    pub z: f64,
+    /// Mean jump (δ_s, δ_a, δ_n) (m), δ_n > 0 opening.
+    pub jump: [f64; 3],
+    /// Mean shear tractions τ_s, τ_a (Pa).
+    pub tau: [f64; 2],
+    /// Normal stress σ_n (Pa, compression positive).
+    pub sigma_n: f64,
+    /// Mean opening (m).
+    pub opening: f64,
+}
+
+/// Failures of the profile outputs.
+#[derive(Debug, thiserror::Error)]
+pub enum ProfilesError {
+    /// Nothing to plot.
+    #[error("profiles: {0}")]
+    Missing(String),
+    /// Writing a file failed.
+    #[error("profiles: {path}: {source}")]
+    Io {
+        /// File.
+        path: PathBuf,
+        /// Cause.
+        source: std::io::Error,
+    },
+    /// A plot could not be written.
+    #[error(transparent)]
+    Plot(#[from] PlotError),
+}
+
+/// Elements of the blocks whose names start with `prefix` (input indices).
+fn elements_with_prefix(mesh: &Mesh, prefix: &str) -> Vec<usize> {
+    let blocks: Vec<bool> = mesh.blocks.iter().map(|b| b.name.starts_with(prefix)).collect();
+    (0..mesh.elements.len())
+        .filter(|&e| blocks[mesh.elements[e].block as usize])
+        .collect()
+}
+
+fn centre(mesh: &Mesh, e: usize) -> Vector3<f64> {
+    mesh.element_coords(e)
+        .iter()
+        .fold(Vector3::zeros(), |a, x| a + Vector3::from(*x))
+        / 8.0
+}
+
+fn y_range(mesh: &Mesh, e: usize) -> (f64, f64) {
+    mesh.element_coords(e)
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
+            (lo.min(x[1]), hi.max(x[1]))
+        })
+}
+
+/// The section plane: the given y, or the middle of the slab's y-range.
+pub fn section_y(mesh: &Mesh, spec: &ProfilesSpec) -> Option<f64> {
+    if let Some(y) = spec.section_y {
+        return Some(y);
+    }
+    let slab = elements_with_prefix(mesh, &spec.slab_prefix);
+    let (lo, hi) = slab
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &e| {
+            let (a, b) = y_range(mesh, e);
+            (lo.min(a), hi.max(b))
+        });
+    (lo <= hi).then_some(0.5 * (lo + hi))
+}
+
+/// Elements of `elements` cut by the plane y = `y`, grouped by elevation (ascending): each
+/// group holds the elements whose centres lie within 1 mm of the same elevation.
+fn section_groups(mesh: &Mesh, elements: &[usize], y: f64) -> Vec<(f64, Vec<usize>)> {
+    let mut cut: Vec<(f64, usize)> = elements
+        .iter()
+        .filter(|&&e| {
+            let (lo, hi) = y_range(mesh, e);
+            let tol = 1e-9 * (hi - lo).abs().max(1.0);
+            lo - tol <= y && y <= hi + tol
+        })
+        .map(|&e| (centre(mesh, e)[2], e))
+        .collect();
+    cut.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+    let mut groups: Vec<(f64, Vec<usize>)> = Vec::new();
+    for (z, e) in cut {
+        match groups.last_mut() {
+            Some((z0, g)) if (z - *z0).abs() < 1e-3 => g.push(e),
+            _ => groups.push((z, vec![e])),
+        }
+    }
+    groups
+}
+
+/// Slab frame of a hex element (module docs): thinnest direction as normal towards +x, in-plane
+/// axes by the rule (E3).
+pub fn slab_frame(x: &[[f64; 3]; 8]) -> LocalFrame {
+    let v = |a: usize| Vector3::from(x[a]);
+    let dirs = [
+        (v(1) - v(0) + v(2) - v(3) + v(5) - v(4) + v(6) - v(7)) / 4.0,
+        (v(3) - v(0) + v(2) - v(1) + v(7) - v(4) + v(6) - v(5)) / 4.0,
+        (v(4) - v(0) + v(5) - v(1) + v(6) - v(2) + v(7) - v(3)) / 4.0,
+    ];
+    let k = (0..3)
+        .min_by(|&a, &b| dirs[a].norm().total_cmp(&dirs[b].norm()))
+        .unwrap_or(2);
+    // the plane's normal from the two in-plane directions (robust for thin elements)
+    let (p, q) = ((k + 1) % 3, (k + 2) % 3);
+    let mut n = dirs[p].cross(&dirs[q]).normalize();
+    if n[0] < 0.0 {
+        n = -n;
+    }
+    LocalFrame::from_normal(&n, &FrameAxes::default())
+}
+
+fn stress_tensor(s: &[f64]) -> Matrix3<f64> {
+    Matrix3::new(s[0], s[3], s[5], s[3], s[1], s[4], s[5], s[4], s[2])
+}
+
+/// Slab stress and deflection vs elevation at the central section (seed Figs. 8, 9).
+pub fn slab_profile(mesh: &Mesh, spec: &ProfilesSpec, f: &StageFields) -> Vec<SlabRow> {
+    let Some(y) = section_y(mesh, spec) else {
+        return Vec::new();
+    };
+    let slab = elements_with_prefix(mesh, &spec.slab_prefix);
+    section_groups(mesh, &slab, y)
+        .into_iter()
+        .map(|(z, g)| {
+            let w = 1.0 / g.len() as f64;
+            let mut row = SlabRow {
+                z,
+                sigma_slope: 0.0,
+                sigma_axis: 0.0,
+                deflection: 0.0,
+            };
+            for e in g {
+                let frame = slab_frame(&mesh.element_coords(e));
+                let sig = stress_tensor(&f.stress[6 * e..6 * e + 6]);
+                row.sigma_slope += w * frame.s.dot(&(sig * frame.s));
+                row.sigma_axis += w * frame.a.dot(&(sig * frame.a));
+                let u = mesh.elements[e].nodes.iter().fold(Vector3::zeros(), |a, &n| {
+                    let n = n as usize;
+                    a + Vector3::new(
+                        f.displacement[3 * n],
+                        f.displacement[3 * n + 1],
+                        f.displacement[3 * n + 2],
+                    )
+                }) / 8.0;
+                row.deflection += w * frame.n.dot(&u);
+            }
+            row
+        })
+        .collect()
+}
+
+/// Interface jumps, tractions and opening vs elevation at the central section (seed Fig. 11).
+pub fn interface_profile(mesh: &Mesh, spec: &ProfilesSpec, f: &StageFields) -> Vec<InterfaceRow> {
+    let Some(y) = section_y(mesh, spec) else {
+        return Vec::new();
+    };
+    if f.interface_jump.is_empty() {
+        return Vec::new();
+    }
+    let iface = elements_with_prefix(mesh, &spec.interface_prefix);
+    section_groups(mesh, &iface, y)
+        .into_iter()
+        .map(|(z, g)| {
+            let w = 1.0 / g.len() as f64;
+            let mut row = InterfaceRow {
+                z,
+                jump: [0.0; 3],
+                tau: [0.0; 2],
+                sigma_n: 0.0,
+                opening: 0.0,
+            };
+            for e in g {
+                for c in 0..3 {
+                    row.jump[c] += w * f.interface_jump[3 * e + c];
+                }
+                row.tau[0] += w * f.interface_traction[3 * e];
+                row.tau[1] += w * f.interface_traction[3 * e + 1];
+                row.sigma_n -= w * f.interface_traction[3 * e + 2];
+                row.opening += w * f.interface_opening[e];
+            }
+            row
+        })
+        .collect()
+}
+
+/// Settlement and horizontal displacement on the vertical through the crest centre at the
+/// central section (seed Fig. 7): `(z, u_x, u_z)` of the solid nodes nearest to that line at
+/// each elevation, excluding the slab.
+pub fn axis_profile(mesh: &Mesh, spec: &ProfilesSpec, f: &StageFields) -> Vec<(f64, f64, f64)> {
+    let Some(y) = section_y(mesh, spec) else {
+        return Vec::new();
+    };
+    let slab: Vec<bool> = mesh
+        .blocks
+        .iter()
+        .map(|b| b.name.starts_with(&spec.slab_prefix))
+        .collect();
+    let mut body = vec![false; mesh.num_nodes()];
+    for el in &mesh.elements {
+        if el.kind == crate::mesh::ElementKind::Hex8 && !slab[el.block as usize] {
+            for &n in &el.nodes {
+                body[n as usize] = true;
+            }
+        }
+    }
+    // the crest centre: the middle of the x-range of the highest body nodes
+    let zmax = (0..mesh.num_nodes())
+        .filter(|&n| body[n])
+        .map(|n| mesh.coords[n][2])
+        .fold(f64::NEG_INFINITY, f64::max);
+    let top: Vec<usize> = (0..mesh.num_nodes())
+        .filter(|&n| body[n] && (mesh.coords[n][2] - zmax).abs() < 1e-6)
+        .collect();
+    let (x0, x1) = top.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &n| {
+        (a.min(mesh.coords[n][0]), b.max(mesh.coords[n][0]))
+    });
+    let xc = 0.5 * (x0 + x1);
+    let mut best: std::collections::BTreeMap<i64, (f64, usize)> = std::collections::BTreeMap::new();
+    for n in (0..mesh.num_nodes()).filter(|&n| body[n]) {
+        let x = mesh.coords[n];
+        let d = (x[0] - xc).powi(2) + (x[1] - y).powi(2);
+        let key = (x[2] * 1000.0).round() as i64;
+        let entry = best.entry(key).or_insert((f64::INFINITY, n));
+        if d < entry.0 {
+            *entry = (d, n);
+        }
+    }
+    best.values()
+        .map(|&(_, n)| {
+            (
+                mesh.coords[n][2],
+                f.displacement[3 * n],
+                f.displacement[3 * n + 2],
+            )
+        })
+        .collect()
+}
+
+/// Probe history: per stage `(stage, σ_n, |τ|, δ_s, τ/σ_n)` of the interface element in the
+/// central section nearest to the probe's elevation (seed Fig. 10).
+pub fn probe_history(
+    mesh: &Mesh,
+    spec: &ProfilesSpec,
+    probe: &Probe,
+    stages: &[StageFields],
+) -> Option<Vec<(String, f64, f64, f64, f64)>> {
+    let y = section_y(mesh, spec)?;
+    let iface = elements_with_prefix(mesh, &spec.interface_prefix);
+    let groups = section_groups(mesh, &iface, y);
+    let (_, g) = groups.iter().min_by(|a, b| {
+        (a.0 - probe.elevation)
+            .abs()
+            .total_cmp(&(b.0 - probe.elevation).abs())
+    })?;
+    let e = g[0];
+    Some(
+        stages
+            .iter()
+            .filter(|f| !f.interface_traction.is_empty())
+            .map(|f| {
+                let t = &f.interface_traction[3 * e..3 * e + 3];
+                let sigma_n = -t[2];
+                let tau = t[0].hypot(t[1]);
+                let ratio = if sigma_n > 0.0 { tau / sigma_n } else { 0.0 };
+                (f.name.clone(), sigma_n, tau, f.interface_jump[3 * e], ratio)
+            })
+            .collect(),
+    )
+}
+
+/// Index of the end-of-construction stage (module docs).
+pub fn construction_end(spec: &ProfilesSpec, stages: &[StageFields]) -> Option<usize> {
+    stages
+        .iter()
+        .rposition(|f| !f.name.starts_with(&spec.impoundment_prefix))
+}
+
+/// Writes the CSV `name` into `dir` and records it in `files`.
+fn csv_out(dir: &Path, files: &mut Vec<PathBuf>, name: &str, text: String) -> Result<(), ProfilesError> {
+    let path = dir.join(name);
+    std::fs::write(&path, text).map_err(|source| ProfilesError::Io {
+        path: path.clone(),
+        source,
+    })?;
+    files.push(path);
+    Ok(())
+}
+
+/// Writes the CSV tables and PNG plots of the module docs into `dir`; returns the files written.
+/// `stages` are all stages of the run in order.
+pub fn write_profiles(
+    mesh: &Mesh,
+    spec: &ProfilesSpec,
+    stages: &[StageFields],
+    dir: &Path,
+) -> Result<Vec<PathBuf>, ProfilesError> {
+    let last = stages
+        .len()
+        .checked_sub(1)
+        .ok_or_else(|| ProfilesError::Missing("no stage results".into()))?;
+    let end = construction_end(spec, stages).unwrap_or(last);
+    let mut states = vec![("end of construction", end)];
+    if end != last {
+        states.push(("after impoundment", last));
+    }
+    let mut files = Vec::new();
+
+    // Fig. 7
+    let mut csv = String::from("state,z_m,ux_m,uz_m\n");
+    let mut p_set = Panel::new(
+        "Settlement on the crest-centre vertical",
+        "settlement (m)",
+        "z (m)",
+    );
+    let mut p_hor = Panel::new("Horizontal displacement (x)", "u_x (m)", "z (m)");
+    for (label, k) in &states {
+        let prof = axis_profile(mesh, spec, &stages[*k]);
+        for (z, ux, uz) in &prof {
+            let _ = writeln!(csv, "{label},{z},{ux},{uz}");
+        }
+        p_set.push(Series::line(*label, prof.iter().map(|r| (-r.2, r.0)).collect()));
+        p_hor.push(Series::line(*label, prof.iter().map(|r| (r.1, r.0)).collect()));
+    }
+    csv_out(dir, &mut files, "fig07_dam_displacement.csv", csv)?;
+    let png = dir.join("fig07_dam_displacement.png");
+    Figure::new("Dam displacement at the central section (seed Fig. 7)")
+        .with(p_set)
+        .with(p_hor)
+        .save_png(&png)?;
+    files.push(png);
+
+    // Figs. 8 and 9
+    let mut csv = String::from("state,z_m,sigma_slope_Pa,sigma_axis_Pa,deflection_m\n");
+    let mut p_s = Panel::new(
+        "Slab stress along the slope (tension +)",
+        "sigma_s (MPa)",
+        "z (m)",
+    );
+    let mut p_a = Panel::new(
+        "Slab stress along the dam axis (tension +)",
+        "sigma_a (MPa)",
+        "z (m)",
+    );
+    let mut p_d = Panel::new("Slab deflection (towards the dam +)", "deflection (cm)", "z (m)");
+    for (label, k) in &states {
+        let prof = slab_profile(mesh, spec, &stages[*k]);
+        for r in &prof {
+            let _ = writeln!(
+                csv,
+                "{label},{},{},{},{}",
+                r.z, r.sigma_slope, r.sigma_axis, r.deflection
+            );
+        }
+        p_s.push(Series::line(
+            *label,
+            prof.iter().map(|r| (r.sigma_slope / 1e6, r.z)).collect(),
+        ));
+        p_a.push(Series::line(
+            *label,
+            prof.iter().map(|r| (r.sigma_axis / 1e6, r.z)).collect(),
+        ));
+        p_d.push(Series::line(
+            *label,
+            prof.iter().map(|r| (r.deflection * 100.0, r.z)).collect(),
+        ));
+    }
+    csv_out(dir, &mut files, "fig08_slab_stress.csv", csv.clone())?;
+    csv_out(dir, &mut files, "fig09_slab_deflection.csv", csv)?;
+    let png = dir.join("fig08_slab_stress.png");
+    Figure::new("Slab stresses at the central section (seed Fig. 8)")
+        .with(p_s)
+        .with(p_a)
+        .save_png(&png)?;
+    files.push(png);
+    let png = dir.join("fig09_slab_deflection.png");
+    Figure::new("Slab deflection at the central section (seed Fig. 9)")
+        .with(p_d)
+        .columns(1)
+        .save_png(&png)?;
+    files.push(png);
+
+    // Fig. 11
+    let prof = interface_profile(mesh, spec, &stages[last]);
+    if !prof.is_empty() {
+        let mut csv =
+            String::from("z_m,delta_s_m,delta_a_m,delta_n_m,tau_s_Pa,tau_a_Pa,sigma_n_Pa,opening_m\n");
+        for r in &prof {
+            let _ = writeln!(
+                csv,
+                "{},{},{},{},{},{},{},{}",
+                r.z, r.jump[0], r.jump[1], r.jump[2], r.tau[0], r.tau[1], r.sigma_n, r.opening
+            );
+        }
+        csv_out(dir, &mut files, "fig11_interface.csv", csv)?;
+        let png = dir.join("fig11_interface.png");
+        Figure::new(format!(
+            "Interface at the central section, stage '{}' (seed Fig. 11)",
+            stages[last].name
+        ))
+        .with(
+            Panel::new("Normal jump (opening +) and opening", "mm", "z (m)")
+                .with(Series::line(
+                    "delta_n",
+                    prof.iter().map(|r| (r.jump[2] * 1e3, r.z)).collect(),
+                ))
+                .with(Series::line(
+                    "opening",
+                    prof.iter().map(|r| (r.opening * 1e3, r.z)).collect(),
+                )),
+        )
+        .with(
+            Panel::new("Shear jump (cushion relative to slab)", "mm", "z (m)")
+                .with(Series::line(
+                    "delta_s (up-slope)",
+                    prof.iter().map(|r| (r.jump[0] * 1e3, r.z)).collect(),
+                ))
+                .with(Series::line(
+                    "delta_a (axis)",
+                    prof.iter().map(|r| (r.jump[1] * 1e3, r.z)).collect(),
+                )),
+        )
+        .save_png(&png)?;
+        files.push(png);
+    }
+
+    // Fig. 10
+    for probe in &spec.probes {
+        let Some(hist) = probe_history(mesh, spec, probe, stages) else {
+            continue;
+        };
+        let mut csv = String::from("stage,sigma_n_Pa,tau_Pa,delta_s_m,tau_over_sigma_n\n");
+        for (s, sn, t, ds, r) in &hist {
+            let _ = writeln!(csv, "{s},{sn},{t},{ds},{r}");
+        }
+        let safe: String = probe
+            .name
+            .chars()
+            .map(|c| {
+                if c.is_ascii_alphanumeric() || c == '-' {
+                    c
+                } else {
+                    '_'
+                }
+            })
+            .collect();
+        csv_out(dir, &mut files, &format!("fig10_probe_{safe}.csv"), csv)?;
+        let png = dir.join(format!("fig10_probe_{safe}.png"));
+        Figure::new(format!("Interface element {} (seed Fig. 10)", probe.name))
+            .with(
+                Panel::new("Stress path", "sigma_n (kPa)", "tau (kPa)").with(Series::line(
+                    "",
+                    hist.iter().map(|h| (h.1 / 1e3, h.2 / 1e3)).collect(),
+                )),
+            )
+            .with(
+                Panel::new(
+                    "Shear displacement vs stress ratio",
+                    "tau / sigma_n",
+                    "delta_s (mm)",
+                )
+                .with(Series::line("", hist.iter().map(|h| (h.4, h.3 * 1e3)).collect())),
+            )
+            .save_png(&png)?;
+        files.push(png);
+    }
+    Ok(files)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::generate::{box_mesh, BoxSpec};
+
+    #[test]
+    fn slab_frame_of_a_thin_element_on_the_upstream_slope() {
+        // a 1:1.4 slope element, thickness 0.5 m normal to the face
+        let n = Vector3::new(1.0, 0.0, -1.4).normalize();
+        let s = Vector3::new(1.4, 0.0, 1.0).normalize();
+        let y = Vector3::y();
+        let base = |a: f64, b: f64| s * a + y * b;
+        let bottom = [base(0.0, 0.0), base(10.0, 0.0), base(10.0, 8.0), base(0.0, 8.0)];
+        let x: [[f64; 3]; 8] = std::array::from_fn(|k| {
+            let p = if k < 4 { bottom[k] - n * 0.5 } else { bottom[k - 4] };
+            [p[0], p[1], p[2]]
+        });
+        let f = slab_frame(&x);
+        assert!((f.n - n).norm() < 1e-12, "{:?}", f.n);
+        assert!((f.s - s).norm() < 1e-12, "{:?}", f.s);
+        assert!((f.a.dot(&y)).abs() > 1.0 - 1e-12);
+    }
+
+    #[test]
+    fn section_profiles_of_a_uniform_field() {
+        // a 'slab' block of 2 x 2 x 3 elements with a uniform stress: the slab profile at the
+        // middle section averages the two elements at each elevation and rotates the stress
+        let mut mesh = box_mesh(&BoxSpec {
+            size: [0.2, 4.0, 6.0],
+            divisions: [1, 2, 3],
+            ..Default::default()
+        })
+        .unwrap();
+        mesh.blocks[0].name = "slab".into();
+        let ne = mesh.elements.len();
+        let mut f = StageFields {
+            name: "impound_1".into(),
+            displacement: vec![0.0; 3 * mesh.num_nodes()],
+            stress: Vec::new(),
+            ..Default::default()
+        };
+        for _ in 0..ne {
+            // σ_yy = −2 MPa (along the axis), σ_zz = −5 MPa (along the "slope": vertical wall)
+            f.stress.extend([0.0, -2.0e6, -5.0e6, 0.0, 0.0, 0.0]);
+        }
+        for n in 0..mesh.num_nodes() {
+            f.displacement[3 * n] = 0.01;
+        }
+        let spec = ProfilesSpec::default();
+        assert_eq!(section_y(&mesh, &spec), Some(2.0));
+        let prof = slab_profile(&mesh, &spec, &f);
+        assert_eq!(prof.len(), 3);
+        for (k, r) in prof.iter().enumerate() {
+            assert!((r.z - (1.0 + 2.0 * k as f64)).abs() < 1e-12);
+            assert!((r.sigma_slope + 5.0e6).abs() < 1e-6, "{r:?}");
+            assert!((r.sigma_axis + 2.0e6).abs() < 1e-6, "{r:?}");
+            assert!((r.deflection - 0.01).abs() < 1e-15, "{r:?}");
+        }
+        assert_eq!(construction_end(&spec, std::slice::from_ref(&f)), None);
+    }
+}
