@@ -69,6 +69,18 @@ enum Command {
         #[arg(short = 'o', long = "out")]
         out: PathBuf,
     },
+    /// Compare two results files field by field (e.g. 1 and 2 ranks): prints the maximum
+    /// absolute and relative difference of every field of every common step. With
+    /// `--tolerance`, exits with code 1 when a relative difference exceeds it.
+    Compare {
+        /// First results file (the reference).
+        a: PathBuf,
+        /// Second results file.
+        b: PathBuf,
+        /// Largest accepted relative difference (max |a − b| / max |a|).
+        #[arg(long)]
+        tolerance: Option<f64>,
+    },
     /// Run material-point tests from a YAML file: drained triaxial (monotonic, cyclic),
     /// oedometer, isotropic compression, interface direct shear (CNL, CNS, monotonic, cyclic,
     /// model comparison); writes CSV tables and a PNG figure (`inputs/point/README.md`).
@@ -121,6 +133,21 @@ fn main() -> ExitCode {
             Ok(summary) => {
                 println!("{summary}");
                 ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("error: {e}");
+                ExitCode::from(2)
+            }
+        },
+        Command::Compare { a, b, tolerance } => match cfrd::io::compare::compare_results(&a, &b) {
+            Ok(diffs) => {
+                print!("{}", cfrd::io::compare::DiffTable(&diffs));
+                let worst = diffs.iter().map(|d| d.relative()).fold(0.0, f64::max);
+                println!("largest relative difference: {worst:.3e}");
+                match tolerance {
+                    Some(t) if worst > t => ExitCode::from(1),
+                    _ => ExitCode::SUCCESS,
+                }
             }
             Err(e) => {
                 eprintln!("error: {e}");

@@ -349,14 +349,29 @@ pub fn axis_profile(mesh: &Mesh, spec: &ProfilesSpec, f: &StageFields) -> Vec<(f
         .collect()
 }
 
-/// Probe history: per stage `(stage, σ_n, |τ|, δ_s, τ/σ_n)` of the interface element in the
-/// central section nearest to the probe's elevation (seed Fig. 10).
+/// One stage of a probe's history.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ProbeRow {
+    /// Stage name.
+    pub stage: String,
+    /// Normal stress σ_n (Pa, compression positive).
+    pub sigma_n: f64,
+    /// Shear stress magnitude |τ| (Pa).
+    pub tau: f64,
+    /// Shear jump along the slope δ_s (m).
+    pub slip: f64,
+    /// Stress ratio τ/σ_n (0 when σ_n ≤ 0).
+    pub ratio: f64,
+}
+
+/// Probe history: per stage, the state of the interface element in the central section nearest
+/// to the probe's elevation (seed Fig. 10).
 pub fn probe_history(
     mesh: &Mesh,
     spec: &ProfilesSpec,
     probe: &Probe,
     stages: &[StageFields],
-) -> Option<Vec<(String, f64, f64, f64, f64)>> {
+) -> Option<Vec<ProbeRow>> {
     let y = section_y(mesh, spec)?;
     let iface = elements_with_prefix(mesh, &spec.interface_prefix);
     let groups = section_groups(mesh, &iface, y);
@@ -374,8 +389,13 @@ pub fn probe_history(
                 let t = &f.interface_traction[3 * e..3 * e + 3];
                 let sigma_n = -t[2];
                 let tau = t[0].hypot(t[1]);
-                let ratio = if sigma_n > 0.0 { tau / sigma_n } else { 0.0 };
-                (f.name.clone(), sigma_n, tau, f.interface_jump[3 * e], ratio)
+                ProbeRow {
+                    stage: f.name.clone(),
+                    sigma_n,
+                    tau,
+                    slip: f.interface_jump[3 * e],
+                    ratio: if sigma_n > 0.0 { tau / sigma_n } else { 0.0 },
+                }
             })
             .collect(),
     )
@@ -542,8 +562,8 @@ pub fn write_profiles(
             continue;
         };
         let mut csv = String::from("stage,sigma_n_Pa,tau_Pa,delta_s_m,tau_over_sigma_n\n");
-        for (s, sn, t, ds, r) in &hist {
-            let _ = writeln!(csv, "{s},{sn},{t},{ds},{r}");
+        for h in &hist {
+            let _ = writeln!(csv, "{},{},{},{},{}", h.stage, h.sigma_n, h.tau, h.slip, h.ratio);
         }
         let safe: String = probe
             .name
@@ -562,7 +582,7 @@ pub fn write_profiles(
             .with(
                 Panel::new("Stress path", "sigma_n (kPa)", "tau (kPa)").with(Series::line(
                     "",
-                    hist.iter().map(|h| (h.1 / 1e3, h.2 / 1e3)).collect(),
+                    hist.iter().map(|h| (h.sigma_n / 1e3, h.tau / 1e3)).collect(),
                 )),
             )
             .with(
@@ -571,7 +591,10 @@ pub fn write_profiles(
                     "tau / sigma_n",
                     "delta_s (mm)",
                 )
-                .with(Series::line("", hist.iter().map(|h| (h.4, h.3 * 1e3)).collect())),
+                .with(Series::line(
+                    "",
+                    hist.iter().map(|h| (h.ratio, h.slip * 1e3)).collect(),
+                )),
             )
             .save_png(&png)?;
         files.push(png);

@@ -297,5 +297,26 @@ fn joint_opens_under_tension_with_the_tension_stiffness() {
             rz.push(o.top_reaction[2]);
         }
         assert!(((rz[0] - rz[1]) / rz[0]).abs() < 1e-8, "{rz:?}");
+        // `cfrd compare` agrees: every field of 1 and 2 ranks within 1e-8 relative
+        let (a, b) = (format!("{name}-1/results.h5"), format!("{name}-2/results.h5"));
+        let o = cfrd(dir.path(), &["compare", &a, &b, "--tolerance", "1e-8"]);
+        let report = text_of(&o);
+        println!("{report}");
+        assert!(
+            o.status.success() && report.contains("| interface_jump |"),
+            "{report}"
+        );
     }
+    // and tells different results apart (exit code 1 above the tolerance)
+    let o = cfrd(
+        dir.path(),
+        &[
+            "compare",
+            "open-1/results.h5",
+            "close-1/results.h5",
+            "--tolerance",
+            "1e-3",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
 }

@@ -8,6 +8,7 @@
 //! | [`xdmf`] | the XDMF 3 XML that ParaView opens |
 //! | [`summary`] | [`RunSummary`] JSON, [`PhaseTimer`], peak memory |
 //! | [`error`] | [`IoError`] and the rule that makes every error collective |
+//! | [`compare`] | `cfrd compare`: field differences between two results files |
 //!
 //! # The results file (format `cfrd-results`, version 1)
 //!
@@ -50,6 +51,10 @@
 //! | `reaction` | node | 3 | N | reaction forces at constrained DOFs (force exerted **on** the structure), 0 elsewhere |
 //! | `velocity`, `acceleration` | node | 3 | m/s, m/s² | dynamic stages |
 //! | `stress` | element | 6 | Pa | Cauchy stress at the element centre, Voigt `[xx, yy, zz, xy, yz, zx]`, **tension positive** |
+//! | `interface_traction` | element | 3 | Pa | interface and joint elements (scenes with interface blocks only; 0 on solids): mean traction (τ_s, τ_a, t_n) over the 4 points in the local frame `[s, a, n]` (spec (E3)), t_n **tension positive** (σ_n = −t_n) |
+//! | `interface_jump` | element | 3 | m | mean jump (δ_s, δ_a, δ_n) since placement, cushion relative to slab, δ_n > 0 opening (spec (E4), (E9)) |
+//! | `interface_slip` | element | 2 | m | mean accumulated shear displacement of the material (s, a), opening excluded |
+//! | `interface_opening` | element | 1 | m | mean opening (gap) ≥ 0 |
 //! | `strain` | element | 6 | – | total strain at the element centre, Voigt order, **tensor** shear ε_xy = γ_xy/2 (see [`hdf5_out::strain_output_components`]), extension positive |
 //!
 //! Compression-positive geotechnical quantities (p, q, stress ratio) are written only under
@@ -91,6 +96,7 @@
 //! * The file is written under a temporary name (`.results.h5.partial-<pid>`) and renamed into
 //!   place by [`ResultsFile::close`]; a writer dropped without closing removes it.
 
+pub mod compare;
 pub mod error;
 pub mod hdf5_out;
 pub mod redistribute;
