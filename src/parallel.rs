@@ -78,6 +78,11 @@ pub fn sum_f64(world: &SimpleCommunicator, v: f64) -> f64 {
     out
 }
 
+/// Whether `v` is true on any rank (collective).
+pub fn any_true(world: &SimpleCommunicator, v: bool) -> bool {
+    sum_u64(world, u64::from(v)) > 0
+}
+
 /// Sum over ranks.
 pub fn sum_u64(world: &SimpleCommunicator, v: u64) -> u64 {
     let mut out = 0u64;

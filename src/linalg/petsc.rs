@@ -1,5 +1,6 @@
 //! A small safe layer over PETSc: owned handles destroyed on drop, `Result` errors carrying
-//! PETSc's message, and only the Vec/Mat/KSP/PC operations cfrd needs.
+//! PETSc's message, and only the Vec/Mat/KSP/PC/SNES operations cfrd needs (SNES drives the
+//! Newton iterations through the [`SnesProblem`] callbacks).
 //!
 //! Start-up and shutdown order (`spec/stack.md` §4): MPI first (rsmpi), then [`Petsc::initialize`]
 //! on the same communicator; every PETSc object must be dropped before the [`Petsc`] guard, which
@@ -372,6 +373,19 @@ impl Matrix {
         ))
     }
 
+    /// Zeroes the given global rows and columns and puts `diag` on the diagonal (no right-hand
+    /// side to adjust: the Jacobian of a residual whose constrained entries are already zero).
+    pub fn zero_rows_columns_only(&mut self, rows: &[i32], diag: f64) -> Result<(), PetscError> {
+        call!(MatZeroRowsColumns(
+            self.raw,
+            rows.len() as i32,
+            rows.as_ptr(),
+            diag,
+            null_mut(),
+            null_mut()
+        ))
+    }
+
     /// Attaches the six rigid-body modes computed from nodal `coords` (a vector with block size
     /// 3 laid out like the DOFs) as the near-null space for algebraic multigrid.
     pub fn set_rigid_body_near_null_space(&mut self, coords: &Vector) -> Result<(), PetscError> {
@@ -400,72 +414,235 @@ impl Drop for Matrix {
     }
 }
 
-/// Outcome of a linear solve.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SolveStats {
-    /// KSP iterations.
-    pub iterations: u32,
-    /// PETSc's converged reason (> 0 converged, < 0 diverged).
-    pub reason: i32,
-    /// Final residual norm as KSP measures it.
-    pub residual: f64,
+/// Sets `-name value` in PETSc's options database unless the user has set `-name`.
+fn default_option(name: &str, value: &str) -> Result<(), PetscError> {
+    let (n, v) = (
+        CString::new(name).expect("option name without NUL"),
+        CString::new(value).expect("option value without NUL"),
+    );
+    let mut set = p::PETSC_FALSE;
+    call!(PetscOptionsHasName(null_mut(), null(), n.as_ptr(), &mut set))?;
+    if set == p::PETSC_FALSE {
+        call!(PetscOptionsSetValue(null_mut(), n.as_ptr(), v.as_ptr()))?;
+    }
+    Ok(())
 }
 
-/// A Krylov solver with its preconditioner.
-pub struct Ksp {
-    raw: p::KSP,
+/// cfrd's Krylov defaults on `ksp`: CG + GAMG for a symmetric operator, GMRES(200) with right
+/// preconditioning + GAMG otherwise; relative tolerance `rtol` on the unpreconditioned residual,
+/// at most `max_it` iterations; PETSc options (`-ksp_type`, `-pc_type`, ...) override them.
+///
+/// For a non-symmetric operator the multigrid levels are smoothed by Richardson + SOR instead of
+/// GAMG's default Chebyshev + Jacobi: Chebyshev needs a real spectrum and eigenvalue estimates
+/// that stay valid as the tangent changes; with the non-associated rockfill tangent it made the
+/// preconditioner so far from a fixed linear operator that right-preconditioned GMRES reported
+/// convergence (1e-10) on a solution 30 % off the direct solve's (measured on the cut-back test
+/// scene of `tests/step_control.rs`: relative residual after the next Newton iteration 2.9e-1
+/// with Chebyshev, 6.3e-2 with Richardson + SOR, Jacobi-smoothed or LU), and broke GMRES down
+/// (PETSc reason −5) on staged dams. `-mg_levels_*` options still override.
+fn configure_ksp(ksp: p::KSP, rtol: f64, max_it: u32, symmetric: bool) -> Result<(), PetscError> {
+    if symmetric {
+        call!(KSPSetType(ksp, p::KSPCG.as_ptr() as *const c_char))?;
+    } else {
+        default_option("-mg_levels_ksp_type", "richardson")?;
+        default_option("-mg_levels_pc_type", "sor")?;
+        call!(KSPSetType(ksp, p::KSPGMRES.as_ptr() as *const c_char))?;
+        call!(KSPGMRESSetRestart(ksp, 200))?;
+        // GMRES cannot use the unpreconditioned norm with left preconditioning
+        call!(KSPSetPCSide(ksp, p::PC_RIGHT))?;
+    }
+    let mut pc: p::PC = null_mut();
+    call!(KSPGetPC(ksp, &mut pc))?;
+    call!(PCSetType(pc, p::PCGAMG.as_ptr() as *const c_char))?;
+    call!(KSPSetTolerances(ksp, rtol, 1e-300, 1e30, max_it as i32))?;
+    call!(KSPSetNormType(ksp, p::KSP_NORM_UNPRECONDITIONED))
 }
 
-impl Ksp {
-    /// A solver with cfrd's defaults (CG + GAMG for a symmetric operator, GMRES + GAMG
-    /// otherwise; relative tolerance `rtol` on the unpreconditioned residual), then overridden by
-    /// PETSc options (`-ksp_type`, `-pc_type`, ... from the scene and the command line).
-    pub fn new(petsc: &Petsc, rtol: f64, max_it: u32, symmetric: bool) -> Result<Ksp, PetscError> {
-        let mut raw: p::KSP = null_mut();
-        call!(KSPCreate(petsc.comm, &mut raw))?;
-        let k = Ksp { raw };
-        if symmetric {
-            call!(KSPSetType(k.raw, p::KSPCG.as_ptr() as *const c_char))?;
-        } else {
-            call!(KSPSetType(k.raw, p::KSPGMRES.as_ptr() as *const c_char))?;
-            call!(KSPGMRESSetRestart(k.raw, 200))?;
-            // GMRES cannot use the unpreconditioned norm with left preconditioning
-            call!(KSPSetPCSide(k.raw, p::PC_RIGHT))?;
-        }
-        let mut pc: p::PC = null_mut();
-        call!(KSPGetPC(k.raw, &mut pc))?;
-        call!(PCSetType(pc, p::PCGAMG.as_ptr() as *const c_char))?;
-        call!(KSPSetTolerances(k.raw, rtol, 1e-300, 1e30, max_it as i32))?;
-        call!(KSPSetNormType(k.raw, p::KSP_NORM_UNPRECONDITIONED))?;
-        Ok(k)
+/// What a nonlinear problem gives PETSc's SNES: the residual F(x), the Jacobian J(x) and the
+/// convergence test. Every method is called collectively (on all ranks, in the same order).
+pub trait SnesProblem {
+    /// Evaluates F(x) into `f`. `Ok(false)` reports a (collectively decided) failure to evaluate
+    /// at `x`, e.g. a material update that failed on some rank; SNES then stops with
+    /// [`SnesOutcome::DomainError`] (or its line search backs off).
+    fn residual(&mut self, x: &Vector, f: &mut Vector) -> Result<bool, PetscError>;
+    /// Evaluates J(x) into [`SnesProblem::jacobian_matrix`].
+    fn jacobian(&mut self, x: &Vector) -> Result<bool, PetscError>;
+    /// The matrix the Jacobian is assembled into (also the preconditioning matrix).
+    fn jacobian_matrix(&self) -> &Matrix;
+    /// Convergence test after `it` Newton iterations with residual norm `fnorm` and the
+    /// iterations of the last linear solve: `Some(true)` converged, `Some(false)` diverged,
+    /// `None` go on.
+    fn converged(&mut self, it: u32, fnorm: f64, linear_iterations: u32) -> Option<bool>;
+}
+
+/// How a SNES solve ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SnesOutcome {
+    /// The problem's convergence test was met.
+    Converged,
+    /// The residual or Jacobian could not be evaluated (material failure).
+    DomainError,
+    /// The linear solver failed (PETSc's KSP reason).
+    LinearSolve(i32),
+    /// The line search failed to decrease the residual.
+    LineSearch,
+    /// The problem's convergence test declared divergence, or the iteration limit was hit.
+    Diverged(i32),
+}
+
+/// PETSc's nonlinear solver (Newton with a line search, `newtonls` with the `l2` line search by
+/// default), driven by a [`SnesProblem`]; `-snes_*` options override the defaults.
+pub struct Snes {
+    raw: p::SNES,
+}
+
+impl Snes {
+    /// A Newton solver with at most `max_it` iterations and cfrd's Krylov defaults (see
+    /// `configure_ksp`) for the linearized systems; then PETSc options are applied.
+    pub fn new(
+        petsc: &Petsc,
+        max_it: u32,
+        rtol: f64,
+        ksp_max_it: u32,
+        symmetric: bool,
+    ) -> Result<Snes, PetscError> {
+        let mut raw: p::SNES = null_mut();
+        call!(SNESCreate(petsc.comm, &mut raw))?;
+        let s = Snes { raw };
+        call!(SNESSetType(s.raw, p::SNESNEWTONLS.as_ptr() as *const c_char))?;
+        // the problem's convergence test decides; only the iteration limit is SNES's own
+        call!(SNESSetTolerances(s.raw, 0.0, 0.0, 0.0, max_it as i32, -1))?;
+        // the secant line search minimizing ‖F‖² along the Newton direction: on the cut-back
+        // test scene (tests/step_control.rs) it needs no cut-back where the full step (`basic`)
+        // needs one and backtracking (`bt`) two; `-snes_linesearch_type` overrides
+        let mut ls: p::SNESLineSearch = null_mut();
+        call!(SNESGetLineSearch(s.raw, &mut ls))?;
+        call!(SNESLineSearchSetType(
+            ls,
+            p::SNESLINESEARCHL2.as_ptr() as *const c_char
+        ))?;
+        let mut ksp: p::KSP = null_mut();
+        call!(SNESGetKSP(s.raw, &mut ksp))?;
+        configure_ksp(ksp, rtol, ksp_max_it, symmetric)?;
+        // options (scene and command line) are applied here, so a bad one is an input error
+        call!(SNESSetFromOptions(s.raw))?;
+        Ok(s)
     }
 
-    /// Sets the operator (also used to build the preconditioner) and applies PETSc options.
-    pub fn set_operator(&mut self, a: &Matrix) -> Result<(), PetscError> {
-        call!(KSPSetOperators(self.raw, a.raw, a.raw))?;
-        call!(KSPSetFromOptions(self.raw))
-    }
-
-    /// Solves `A x = b`.
-    pub fn solve(&mut self, b: &Vector, x: &mut Vector) -> Result<SolveStats, PetscError> {
-        call!(KSPSolve(self.raw, b.raw, x.raw))?;
-        let (mut its, mut reason, mut res) = (0, 0, 0.0);
-        call!(KSPGetIterationNumber(self.raw, &mut its))?;
-        call!(KSPGetConvergedReason(self.raw, &mut reason))?;
-        call!(KSPGetResidualNorm(self.raw, &mut res))?;
-        Ok(SolveStats {
-            iterations: its as u32,
-            reason,
-            residual: res,
-        })
+    /// Solves F(x) = 0 from the initial guess in `x`, with `r` as the residual work vector.
+    /// Returns the outcome and the Newton iterations.
+    pub fn solve<P: SnesProblem>(
+        &mut self,
+        problem: &mut P,
+        r: &mut Vector,
+        x: &mut Vector,
+    ) -> Result<(SnesOutcome, u32), PetscError> {
+        let j = problem.jacobian_matrix().raw;
+        let ctx = problem as *mut P as *mut std::ffi::c_void;
+        call!(SNESSetFunction(self.raw, r.raw, Some(snes_residual::<P>), ctx))?;
+        call!(SNESSetJacobian(self.raw, j, j, Some(snes_jacobian::<P>), ctx))?;
+        call!(SNESSetConvergenceTest(
+            self.raw,
+            Some(snes_converged::<P>),
+            ctx,
+            None
+        ))?;
+        call!(SNESSolve(self.raw, null_mut(), x.raw))?;
+        let (mut reason, mut its) = (0, 0);
+        call!(SNESGetConvergedReason(self.raw, &mut reason))?;
+        call!(SNESGetIterationNumber(self.raw, &mut its))?;
+        let outcome = match reason {
+            r if r > 0 => SnesOutcome::Converged,
+            p::SNES_DIVERGED_FUNCTION_DOMAIN => SnesOutcome::DomainError,
+            p::SNES_DIVERGED_LINEAR_SOLVE => {
+                let mut ksp: p::KSP = null_mut();
+                let mut kr = 0;
+                call!(SNESGetKSP(self.raw, &mut ksp))?;
+                call!(KSPGetConvergedReason(ksp, &mut kr))?;
+                SnesOutcome::LinearSolve(kr)
+            }
+            p::SNES_DIVERGED_LINE_SEARCH => SnesOutcome::LineSearch,
+            r => SnesOutcome::Diverged(r),
+        };
+        Ok((outcome, its as u32))
     }
 }
 
-impl Drop for Ksp {
+impl Drop for Snes {
     fn drop(&mut self) {
-        // SAFETY: created by KSPCreate, destroyed once.
+        // SAFETY: created by SNESCreate, destroyed once.
         unsafe {
-            p::KSPDestroy(&mut self.raw);
+            p::SNESDestroy(&mut self.raw);
         }
     }
+}
+
+/// A vector PETSc owns, seen as a [`Vector`] for the duration of a callback (never destroyed).
+fn borrowed(raw: p::Vec) -> std::mem::ManuallyDrop<Vector> {
+    std::mem::ManuallyDrop::new(Vector { raw })
+}
+
+/// PETSc error code of a failed callback.
+const CALLBACK_FAILED: p::PetscErrorCode = 1;
+
+unsafe extern "C" fn snes_residual<P: SnesProblem>(
+    snes: p::SNES,
+    x: p::Vec,
+    f: p::Vec,
+    ctx: *mut std::ffi::c_void,
+) -> p::PetscErrorCode {
+    // SAFETY: ctx is the `&mut P` given to Snes::solve, alive for the whole SNESSolve.
+    let problem = unsafe { &mut *(ctx as *mut P) };
+    let (x, mut f) = (borrowed(x), borrowed(f));
+    match problem.residual(&x, &mut f) {
+        Ok(true) => 0,
+        Ok(false) => unsafe { p::SNESSetFunctionDomainError(snes) },
+        Err(e) => e.code.max(CALLBACK_FAILED),
+    }
+}
+
+unsafe extern "C" fn snes_jacobian<P: SnesProblem>(
+    snes: p::SNES,
+    x: p::Vec,
+    _a: p::Mat,
+    _b: p::Mat,
+    ctx: *mut std::ffi::c_void,
+) -> p::PetscErrorCode {
+    // SAFETY: as in snes_residual.
+    let problem = unsafe { &mut *(ctx as *mut P) };
+    match problem.jacobian(&borrowed(x)) {
+        Ok(true) => 0,
+        Ok(false) => unsafe { p::SNESSetJacobianDomainError(snes) },
+        Err(e) => e.code.max(CALLBACK_FAILED),
+    }
+}
+
+unsafe extern "C" fn snes_converged<P: SnesProblem>(
+    snes: p::SNES,
+    it: p::PetscInt,
+    _xnorm: p::PetscReal,
+    _gnorm: p::PetscReal,
+    fnorm: p::PetscReal,
+    reason: *mut p::SNESConvergedReason,
+    ctx: *mut std::ffi::c_void,
+) -> p::PetscErrorCode {
+    // SAFETY: as in snes_residual; `reason` is a valid out-pointer.
+    let problem = unsafe { &mut *(ctx as *mut P) };
+    let mut lin = 0;
+    if it > 0 {
+        let mut ksp: p::KSP = null_mut();
+        unsafe {
+            p::SNESGetKSP(snes, &mut ksp);
+            p::KSPGetIterationNumber(ksp, &mut lin);
+        }
+    }
+    let r = match problem.converged(it as u32, fnorm, lin as u32) {
+        Some(true) => p::SNES_CONVERGED_FNORM_ABS,
+        Some(false) => p::SNES_DIVERGED_DTOL,
+        None => p::SNES_CONVERGED_ITERATING,
+    };
+    unsafe {
+        *reason = r;
+    }
+    0
 }

@@ -1,4 +1,4 @@
-//! Static equilibrium with Newton's method on the distributed system.
+//! Static equilibrium with Newton's method (PETSc SNES with a line search) on the distributed system.
 //!
 //! ```text
 //! r(u) = f_ext − f_int(u) = 0,   f_int = Σ_e ∫ Bᵀ σ(Δε) dV,   K δu = r,   u ← u + δu
@@ -13,9 +13,10 @@ use super::solid::{SolidBlock, Vector24};
 use crate::element::hex8::{face_pressure_load, gravity_load, Hex8Geometry};
 use crate::element::interface8::Interface8Geometry;
 use crate::element::interface_frame::FrameAxes;
-use crate::linalg::petsc::{Gather, Ksp, Matrix, Petsc, SolveStats, Vector};
+use crate::linalg::petsc::{Gather, Matrix, Petsc, PetscError, Snes, SnesOutcome, SnesProblem, Vector};
 use crate::material::BlockMaterial;
 use crate::mesh::Mesh;
+use crate::parallel::any_true;
 use crate::parallel::{any_error, sum_f64, sum_u64};
 use crate::scene::schema::PlacedNodes;
 use crate::scene::{Scene, Term};
@@ -61,6 +62,14 @@ pub enum SolveError {
         /// Last relative residual.
         residual: f64,
     },
+    /// The line search found no step that reduces the residual.
+    #[error("line search failed after {iterations} Newton iterations (relative residual {residual:.3e})")]
+    LineSearch {
+        /// Iterations done.
+        iterations: u32,
+        /// Last relative residual.
+        residual: f64,
+    },
     /// A material update failed on some rank (message of the lowest failing rank).
     #[error("{0}")]
     Collective(String),
@@ -89,6 +98,7 @@ impl SolveError {
             SolveError::Material { .. }
                 | SolveError::Collective(_)
                 | SolveError::Newton { .. }
+                | SolveError::LineSearch { .. }
                 | SolveError::Linear { .. }
         )
     }
@@ -194,7 +204,8 @@ pub struct StaticProblem<'a> {
     u_committed: Vector,
     gather: Gather,
     gather_committed: Gather,
-    ksp: Ksp,
+    /// The nonlinear solver (taken out while it runs a step).
+    snes: Option<Snes>,
     /// Diagonal value put on Dirichlet rows: the mean diagonal of the stiffness (same on every
     /// rank), so the constrained rows do not spoil the multigrid smoothers' scaling.
     dirichlet_diag: f64,
@@ -330,15 +341,14 @@ impl<'a> StaticProblem<'a> {
         let gather_committed = Gather::new(&u, &disc.local_dofs)?;
         // the non-associated GP models have non-symmetric tangents: CG only when all are symmetric
         let symmetric = blocks.iter().all(BlockStates::symmetric_tangent);
-        let mut ksp = Ksp::new(
+        // options (scene and command line) are applied here, so a bad one is an input error
+        let snes = Snes::new(
             petsc,
+            scene.file.solver.newton_max_iterations,
             scene.file.solver.rtol,
             scene.file.solver.max_iterations,
             symmetric,
         )?;
-        // options (scene and command line) are applied here, so a bad one is an input error;
-        // PETSc rebuilds the preconditioner whenever the matrix has changed
-        ksp.set_operator(&k)?;
         let mut f_prev = u.duplicate()?;
         f_prev.set_all(0.0)?;
         let n_owned_elements = disc.owned_elements.len();
@@ -364,7 +374,7 @@ impl<'a> StaticProblem<'a> {
             u_committed,
             gather,
             gather_committed,
-            ksp,
+            snes: Some(snes),
             dirichlet_diag: 1.0,
         })
     }
@@ -666,93 +676,90 @@ impl<'a> StaticProblem<'a> {
         r
     }
 
+    /// Newton's method with a line search on PETSc's SNES for the load factor `lambda`
+    /// (residual and Jacobian from [`StaticProblem::assemble`], convergence test on the relative
+    /// residual ‖f_ext − f_int‖ / max(‖f_ext‖, ‖f_int‖) over the free DOFs; see [`NewtonStep`]).
+    /// Commits the states on convergence.
     fn newton(&mut self, lambda: f64, report: &mut SolveReport) -> Result<(), SolveError> {
-        let opts = &self.scene.file.solver;
         let mut f_ext = self.u.duplicate()?;
         self.external_force(lambda, &mut f_ext)?;
-        let mut f_int = self.u.duplicate()?;
-        let mut r = self.u.duplicate()?;
-        let mut du = self.u.duplicate()?;
+        let lo = self.disc.dof_lo;
+        let targets: Vec<(usize, f64)> = self
+            .fixed
+            .iter()
+            .zip(&self.fixed_start)
+            .map(|(&(d, v), &v0)| (d as usize - lo, v0 + lambda * (v - v0)))
+            .collect();
         let rows: Vec<i32> = self.fixed.iter().map(|f| f.0).collect();
-        for it in 0..=opts.newton_max_iterations {
-            let t0 = Instant::now();
-            // a material failure on one rank must stop every rank (collective decision)
-            let assembled = self.assemble(&mut f_int, true);
-            report.assembly_seconds += t0.elapsed().as_secs_f64();
-            let world = SimpleCommunicator::world();
-            any_error(&world, assembled).map_err(SolveError::Collective)?;
-            // r = f_ext − f_int on free DOFs; the reference is max(|f_ext|, |f_int|)
-            r.copy_from(&f_ext)?;
-            r.axpy(-1.0, &f_int)?;
-            let lo = self.disc.dof_lo;
-            let target: Vec<(usize, f64)> = self
-                .fixed
-                .iter()
-                .zip(&self.fixed_start)
-                .map(|(&(d, v), &v0)| (d as usize - lo, v0 + lambda * (v - v0)))
-                .collect();
-            let u_now: Vec<f64> = self.u.read(|s| s.to_vec())?;
-            du.set_all(0.0)?;
-            du.write(|d| {
-                for &(l, v) in &target {
-                    d[l] = v - u_now[l];
-                }
-            })?;
-            r.write(|s| {
-                for &(l, _) in &target {
-                    s[l] = 0.0;
-                }
-            })?;
-            let r_norm = r.norm2()?;
-            let ref_norm = f_ext.norm2()?.max(f_int.norm2()?).max(1e-300);
-            let rel = r_norm / ref_norm;
-            report.residuals.push(rel);
-            if opts.monitor && world.rank() == 0 {
-                eprintln!("newton λ = {lambda:.6} iteration {it}: relative residual {rel:.3e}");
+        // initial guess: the committed state with the prescribed values of this step
+        let mut x = self.u.duplicate()?;
+        x.copy_from(&self.u_committed)?;
+        x.write(|s| {
+            for &(l, v) in &targets {
+                s[l] = v;
             }
-            if !rel.is_finite() {
-                return Err(SolveError::Newton {
-                    iterations: it,
-                    residual: rel,
-                });
-            }
-            if it > 0 && rel <= opts.newton_tol {
-                report.newton_iterations += it;
-                for b in &mut self.blocks {
+        })?;
+        let mut r = self.u.duplicate()?;
+        let f_int = self.u.duplicate()?;
+        let t0 = Instant::now();
+        let mut snes = self
+            .snes
+            .take()
+            .expect("the nonlinear solver is in place between steps");
+        let mut step = NewtonStep {
+            problem: self,
+            f_ext,
+            f_int,
+            targets,
+            rows,
+            lambda,
+            ref_norm: 1e-300,
+            failure: None,
+            report,
+            assembly_seconds: 0.0,
+            last_linear_iterations: 0,
+        };
+        let solved = snes.solve(&mut step, &mut r, &mut x);
+        let NewtonStep {
+            problem,
+            failure,
+            report,
+            assembly_seconds,
+            last_linear_iterations,
+            ..
+        } = step;
+        problem.snes = Some(snes);
+        report.solve_seconds += (t0.elapsed().as_secs_f64() - assembly_seconds).max(0.0);
+        let (outcome, iterations) = solved?;
+        let residual = report.residuals.last().copied().unwrap_or(f64::NAN);
+        match outcome {
+            SnesOutcome::Converged => {
+                // the states must be those of the solution: re-evaluate if the last residual
+                // was not at x (collective)
+                let same = problem.u.read(|u| x.read(|s| u == s))??;
+                if any_true(&SimpleCommunicator::world(), !same) {
+                    problem.u.copy_from(&x)?;
+                    let mut f = problem.u.duplicate()?;
+                    let assembled = problem.assemble(&mut f, false);
+                    any_error(&SimpleCommunicator::world(), assembled).map_err(SolveError::Collective)?;
+                }
+                report.newton_iterations += iterations;
+                for b in &mut problem.blocks {
                     b.commit();
                 }
-                self.u_committed.copy_from(&self.u)?;
-                return Ok(());
+                problem.u_committed.copy_from(&problem.u)?;
+                Ok(())
             }
-            if it == opts.newton_max_iterations {
-                break;
-            }
-            // K δu = r with δu prescribed on the fixed DOFs
-            self.k
-                .zero_rows_columns(&rows, self.dirichlet_diag, &du, &mut r)?;
-            let t1 = Instant::now();
-            let stats: SolveStats = self.ksp.solve(&r, &mut du)?;
-            report.solve_seconds += t1.elapsed().as_secs_f64();
-            report.ksp_iterations.push(stats.iterations);
-            if stats.reason < 0 {
-                return Err(SolveError::Linear {
-                    reason: stats.reason,
-                    iterations: stats.iterations,
-                });
-            }
-            self.u.axpy(1.0, &du)?;
-            // prescribed values exactly (no round-off from u + (v − u))
-            self.u.write(|s| {
-                for &(l, v) in &target {
-                    s[l] = v;
-                }
-            })?;
+            SnesOutcome::DomainError => Err(SolveError::Collective(
+                failure.unwrap_or_else(|| "the residual could not be evaluated".into()),
+            )),
+            SnesOutcome::LinearSolve(reason) => Err(SolveError::Linear {
+                reason,
+                iterations: last_linear_iterations,
+            }),
+            SnesOutcome::LineSearch => Err(SolveError::LineSearch { iterations, residual }),
+            SnesOutcome::Diverged(_) => Err(SolveError::Newton { iterations, residual }),
         }
-        let residual = report.residuals.last().copied().unwrap_or(f64::NAN);
-        Err(SolveError::Newton {
-            iterations: opts.newton_max_iterations,
-            residual,
-        })
     }
 
     /// Counts the interface points of placed elements that are open or slipping in the
@@ -853,5 +860,111 @@ impl<'a> StaticProblem<'a> {
             out.jump.push(jump);
         }
         Ok(out)
+    }
+}
+
+/// One load step's nonlinear problem as SNES sees it:
+///
+/// ```text
+/// F(x) = f_int(x) − f_ext(λ)   on free DOFs,     F_i = d·(x_i − ū_i)   on fixed DOFs,
+/// J(x) = K_t(x) with the fixed rows and columns replaced by d·I
+/// ```
+/// (d the mean stiffness diagonal, set by the last assembly of K). The initial guess already
+/// holds the prescribed values ū, so the fixed entries of F stay zero and zeroing the fixed
+/// columns of J is exact. Every evaluation integrates the materials from the committed states
+/// with the step increment x − u_committed (spec §8.1); only the Jacobian assembles K (the line
+/// search's residual evaluations do not pay for tangents).
+struct NewtonStep<'s, 'a> {
+    problem: &'s mut StaticProblem<'a>,
+    f_ext: Vector,
+    f_int: Vector,
+    /// Fixed DOFs: (local index, prescribed value at this λ).
+    targets: Vec<(usize, f64)>,
+    /// Fixed DOFs (global rows).
+    rows: Vec<i32>,
+    lambda: f64,
+    /// max(‖f_ext‖, ‖f_int‖) of the last residual evaluation.
+    ref_norm: f64,
+    /// Message of the last failed material update.
+    failure: Option<String>,
+    report: &'s mut SolveReport,
+    assembly_seconds: f64,
+    last_linear_iterations: u32,
+}
+
+impl NewtonStep<'_, '_> {
+    /// Sets u = x and assembles f_int (and K if `want_k`) there; a material failure on any rank
+    /// is reported on all (collective).
+    fn evaluate_at(&mut self, x: &Vector, want_k: bool) -> Result<bool, PetscError> {
+        self.problem.u.copy_from(x)?;
+        let t0 = Instant::now();
+        let assembled = self.problem.assemble(&mut self.f_int, want_k);
+        let dt = t0.elapsed().as_secs_f64();
+        self.report.assembly_seconds += dt;
+        self.assembly_seconds += dt;
+        match any_error(&SimpleCommunicator::world(), assembled) {
+            Ok(()) => Ok(true),
+            Err(m) => {
+                self.failure = Some(m);
+                Ok(false)
+            }
+        }
+    }
+}
+
+impl SnesProblem for NewtonStep<'_, '_> {
+    fn residual(&mut self, x: &Vector, f: &mut Vector) -> Result<bool, PetscError> {
+        if !self.evaluate_at(x, false)? {
+            return Ok(false);
+        }
+        f.copy_from(&self.f_int)?;
+        f.axpy(-1.0, &self.f_ext)?;
+        let d = self.problem.dirichlet_diag;
+        let xs: Vec<f64> = x.read(|s| s.to_vec())?;
+        f.write(|s| {
+            for &(l, v) in &self.targets {
+                s[l] = d * (xs[l] - v);
+            }
+        })?;
+        self.ref_norm = self.f_ext.norm2()?.max(self.f_int.norm2()?).max(1e-300);
+        Ok(true)
+    }
+
+    fn jacobian(&mut self, x: &Vector) -> Result<bool, PetscError> {
+        if !self.evaluate_at(x, true)? {
+            return Ok(false);
+        }
+        let d = self.problem.dirichlet_diag;
+        self.problem.k.zero_rows_columns_only(&self.rows, d)?;
+        Ok(true)
+    }
+
+    fn jacobian_matrix(&self) -> &Matrix {
+        &self.problem.k
+    }
+
+    fn converged(&mut self, it: u32, fnorm: f64, linear_iterations: u32) -> Option<bool> {
+        let rel = fnorm / self.ref_norm;
+        if it > 0 {
+            self.report.ksp_iterations.push(linear_iterations);
+            self.last_linear_iterations = linear_iterations;
+        }
+        self.report.residuals.push(rel);
+        let opts = &self.problem.scene.file.solver;
+        if opts.monitor && SimpleCommunicator::world().rank() == 0 {
+            eprintln!(
+                "newton λ = {:.6} iteration {it}: relative residual {rel:.3e}{}",
+                self.lambda,
+                if it > 0 {
+                    format!(" ({linear_iterations} linear iterations)")
+                } else {
+                    String::new()
+                }
+            );
+        }
+        if !rel.is_finite() {
+            return Some(false);
+        }
+        (it > 0 && rel <= opts.newton_tol).then_some(true)
     }
 }
