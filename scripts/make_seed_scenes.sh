@@ -12,6 +12,13 @@ declare -A mesh=(
   [medium]="{ fill_layers: 30, elements_per_panel: 1, rockfill_elements: 8, impoundment_stages: 4 }"
   [fine]="{ fill_layers: 86, elements_per_panel: 2, rockfill_elements: 14, impoundment_stages: 6 }"
 )
+# the stiff interfaces and joints (k2 1e10 Pa/m, 2.5e10 Pa/m) stall the default GAMG preconditioner
+# once the slab is placed; a direct solver (MUMPS) is used where it is affordable
+declare -A solver=(
+  [coarse]="solver: { petsc_options: \"-ksp_type preonly -pc_type lu -pc_factor_mat_solver_type mumps\" }"
+  [medium]="solver: { petsc_options: \"-ksp_type preonly -pc_type lu -pc_factor_mat_solver_type mumps\" }"
+  [fine]="solver: {}"
+)
 declare -A note=(
   [coarse]="coarse mesh (panels 30 m, wider than the seed's 12-18 m; a quick check, about a minute on 2 cores)"
   [medium]="medium mesh (panels 15 m)"
@@ -58,6 +65,7 @@ boundary:
   - { set: plinth, fix: [x, y, z] }
 loads:
   gravity: { g: [0.0, 0.0, -9.81] }
+${solver[$res]}
 YAML
   done
 done

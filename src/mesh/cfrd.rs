@@ -78,6 +78,11 @@
 //! * One element through the slab; the slab's outer face at the crest lies t·m/√(1+m²) above
 //!   the crest elevation (the slab is offset normal to the face).
 //! * No upstream blanket/ballast, no parapet wall, no secondary downstream rockfill zone.
+//! * Fill layers have equal thickness within each elevation segment, so with 86 layers slab
+//!   stage I is cast after layer 50 (the layer that ends at 2780 m), where the paper's
+//!   (non-uniform) layers put it after step 54.
+//! * Impoundment levels rise in equal increments; within a stage the solver interpolates the
+//!   water force linearly between the two levels.
 
 use crate::element::hex8::HEX8_FACES;
 use crate::mesh::error::MeshError;

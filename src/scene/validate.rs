@@ -296,7 +296,7 @@ fn match_blocks<'a>(
         if mesh.block_index(name).is_none() {
             let known: Vec<&str> = mesh.blocks.iter().map(|b| b.name.as_str()).collect();
             let shown = if known.len() > 20 {
-                format!("{} … ({} blocks)", known[..20].join(", "), known.len())
+                format!("{} ... ({} blocks)", known[..20].join(", "), known.len())
             } else {
                 known.join(", ")
             };
