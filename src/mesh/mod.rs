@@ -4,6 +4,7 @@
 
 use std::collections::BTreeMap;
 
+pub mod cfrd;
 pub mod error;
 pub mod generate;
 pub mod gmsh;

@@ -8,6 +8,8 @@
 pub mod error;
 pub mod schema;
 pub mod term;
+#[cfg(test)]
+mod tests;
 pub mod validate;
 
 pub use error::SceneError;

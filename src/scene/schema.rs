@@ -4,6 +4,7 @@
 
 use crate::element::interface8::InterfaceRule;
 use crate::material::MaterialParams;
+pub use crate::mesh::cfrd::CfrdSpec;
 pub use crate::mesh::generate::{BoxSpec, DamSpec};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
@@ -26,7 +27,9 @@ pub struct SceneFile {
     /// Materials by name.
     pub materials: BTreeMap<String, MaterialParams>,
     /// Element blocks (mesh physical volumes) by name, each with its material. Every block of
-    /// the mesh must be listed.
+    /// the mesh must be listed. A key with `*` is a pattern (`*` matches any run of characters,
+    /// e.g. `fill_*_cushion`): it applies to every block it matches that has no exact key; a
+    /// pattern that matches no block, or a block matched by two patterns, is an error.
     pub blocks: BTreeMap<String, BlockSpec>,
     /// Displacement boundary conditions on node sets.
     #[serde(default)]
@@ -35,7 +38,8 @@ pub struct SceneFile {
     #[serde(default)]
     pub loads: LoadsSpec,
     /// Construction and loading stages, in order. Without stages the scene is one stage that
-    /// places every block and applies `loads`. With stages, each stage places its blocks
+    /// places every block and applies `loads` (a `mesh.cfrd` scene runs the generator's
+    /// schedule instead). With stages, each stage places its blocks
     /// (strain-free) and applies `loads` plus its own loads.
     #[serde(default)]
     pub stages: Vec<StageSpec>,
@@ -54,7 +58,7 @@ pub enum Units {
     SI,
 }
 
-/// Mesh source: exactly one of `file`, `box` or `dam`.
+/// Mesh source: exactly one of `file`, `box`, `dam` or `cfrd`.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct MeshSource {
@@ -69,6 +73,14 @@ pub struct MeshSource {
     /// node and face sets `upstream`, `downstream`, `base` (z = 0), `crest`, `ymin`, `ymax`.
     #[serde(default)]
     pub dam: Option<DamSpec>,
+    /// A complete CFRD in a trapezoidal canyon (`crate::mesh::cfrd`; omitted keys take the seed
+    /// dam's values): blocks `fill_KKK_{cushion,transition,rockfill}`, `slab_S`, `interface_S`,
+    /// `joint_vertical_S`, `joint_perimetric_{bottom,left,right}_S` (orientations set); node
+    /// sets `foundation`, `plinth`; face set `slab_upstream`; z is the elevation. Without
+    /// `stages` the scene runs the generator's schedule: fill layers, slab stages, then
+    /// impoundment (hydrostatic load on `slab_upstream` at rising levels).
+    #[serde(default)]
+    pub cfrd: Option<CfrdSpec>,
 }
 
 /// Material assignment of a block.

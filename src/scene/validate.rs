@@ -1,19 +1,22 @@
 //! Loading, validating and resolving a scene.
 
 use super::error::SceneError;
-use super::schema::{LoadsSpec, MeshSource, SceneFile};
+use super::schema::{BlockSpec, HydrostaticSpec, LoadsSpec, MeshSource, SceneFile, StageSpec};
 use super::term::Term;
 use crate::element::interface8::{Interface8Geometry, InterfaceRule};
 use crate::element::interface_frame::FrameAxes;
 use crate::material::{BlockMaterial, MaterialParams};
+use crate::mesh::cfrd::{cfrd_mesh, CfrdStage};
 use crate::mesh::ElementKind;
 use crate::mesh::{generate, Mesh};
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 /// A loaded, validated and resolved scene.
 #[derive(Debug, Clone)]
 pub struct Scene {
-    /// The file as written.
+    /// The file as written; a `mesh.cfrd` scene without `stages` gets the generator's schedule
+    /// as its `stages`.
     pub file: SceneFile,
     /// Where it was read from (for messages); `<embedded>` for the built-in default.
     pub source: String,
@@ -57,31 +60,26 @@ impl Scene {
 
     /// Parses, validates and resolves scene text; relative paths are taken from `base`.
     pub fn from_str(text: &str, source: &str, base: &Path) -> Result<Scene, SceneError> {
-        let file = parse(text, source)?;
+        let mut file = parse(text, source)?;
         let inv = |path: &str, message: String| SceneError::Invalid {
             file: source.to_string(),
             path: path.to_string(),
             message,
         };
         check_values(&file, &inv)?;
-        let mesh = build_mesh(&file.mesh, base).map_err(|message| SceneError::Mesh {
+        let (mesh, schedule) = build_mesh(&file.mesh, base).map_err(|message| SceneError::Mesh {
             file: source.to_string(),
             message,
         })?;
+        if file.stages.is_empty() {
+            if let Some(schedule) = schedule {
+                file.stages = schedule_stages(&schedule, &file.mesh);
+            }
+        }
 
         // blocks <-> mesh blocks <-> materials
         let mut block_materials = Vec::with_capacity(mesh.blocks.len());
         for (name, spec) in &file.blocks {
-            if mesh.block_index(name).is_none() {
-                let known: Vec<&str> = mesh.blocks.iter().map(|b| b.name.as_str()).collect();
-                return Err(inv(
-                    &format!("blocks.{name}"),
-                    format!(
-                        "the mesh has no block (physical volume) '{name}'; it has: {}",
-                        known.join(", ")
-                    ),
-                ));
-            }
             if !file.materials.contains_key(&spec.material) {
                 return Err(inv(
                     &format!("blocks.{name}.material"),
@@ -89,16 +87,11 @@ impl Scene {
                 ));
             }
         }
+        let block_specs = match_blocks(&file.blocks, &mesh, &inv)?;
         let mut block_interface = Vec::with_capacity(mesh.blocks.len());
-        for b in &mesh.blocks {
-            let Some(spec) = file.blocks.get(&b.name) else {
-                return Err(inv(
-                    "blocks",
-                    format!("mesh block '{}' has no material assigned", b.name),
-                ));
-            };
+        for (b, (key, spec)) in mesh.blocks.iter().zip(&block_specs) {
             let material = file.materials[&spec.material].split();
-            let path = format!("blocks.{}", b.name);
+            let path = format!("blocks.{key}");
             block_interface.push(match (b.kind, &material) {
                 (ElementKind::Hex8, BlockMaterial::Solid(_)) => {
                     for (given, key) in [
@@ -265,6 +258,120 @@ impl Scene {
             base: base.to_path_buf(),
         })
     }
+}
+
+/// Whether `name` matches the block pattern `pattern` (`*` matches any run of characters,
+/// including none; every other character matches itself).
+pub fn block_pattern_matches(pattern: &str, name: &str) -> bool {
+    let (p, n): (Vec<char>, Vec<char>) = (pattern.chars().collect(), name.chars().collect());
+    // matched[j]: pattern prefix p[..i] matches name prefix n[..j]
+    let mut matched = vec![false; n.len() + 1];
+    matched[0] = true;
+    for &c in &p {
+        if c == '*' {
+            for j in 1..=n.len() {
+                matched[j] = matched[j] || matched[j - 1];
+            }
+        } else {
+            for j in (1..=n.len()).rev() {
+                matched[j] = matched[j - 1] && n[j - 1] == c;
+            }
+            matched[0] = false;
+        }
+    }
+    matched[n.len()]
+}
+
+/// The scene entry of every mesh block (in mesh order) with its key in `blocks`: the exact key
+/// if there is one, else the single pattern that matches the name. An exact key that names no
+/// block, a pattern that matches no block, a block matched by two patterns and a block without
+/// an entry are errors naming the YAML paths.
+fn match_blocks<'a>(
+    blocks: &'a BTreeMap<String, BlockSpec>,
+    mesh: &Mesh,
+    inv: &dyn Fn(&str, String) -> SceneError,
+) -> Result<Vec<(&'a str, &'a BlockSpec)>, SceneError> {
+    let patterns: Vec<(&String, &BlockSpec)> = blocks.iter().filter(|(k, _)| k.contains('*')).collect();
+    for (name, _) in blocks.iter().filter(|(k, _)| !k.contains('*')) {
+        if mesh.block_index(name).is_none() {
+            let known: Vec<&str> = mesh.blocks.iter().map(|b| b.name.as_str()).collect();
+            let shown = if known.len() > 20 {
+                format!("{} ... ({} blocks)", known[..20].join(", "), known.len())
+            } else {
+                known.join(", ")
+            };
+            return Err(inv(
+                &format!("blocks.{name}"),
+                format!("the mesh has no block (physical volume) '{name}'; it has: {shown}"),
+            ));
+        }
+    }
+    for (pattern, _) in &patterns {
+        if !mesh
+            .blocks
+            .iter()
+            .any(|b| block_pattern_matches(pattern, &b.name))
+        {
+            return Err(inv(
+                &format!("blocks.{pattern}"),
+                format!("the pattern '{pattern}' matches no block of the mesh"),
+            ));
+        }
+    }
+    let mut out = Vec::with_capacity(mesh.blocks.len());
+    for b in &mesh.blocks {
+        if let Some((key, spec)) = blocks.get_key_value(&b.name) {
+            out.push((key.as_str(), spec));
+            continue;
+        }
+        let mut hits = patterns.iter().filter(|(p, _)| block_pattern_matches(p, &b.name));
+        match (hits.next(), hits.next()) {
+            (Some((key, spec)), None) => out.push((key.as_str(), *spec)),
+            (Some((first, _)), Some((second, _))) => {
+                return Err(inv(
+                    &format!("blocks.{second}"),
+                    format!(
+                        "block '{}' is matched by two patterns, blocks.{first} and blocks.{second}; \
+                         give the block its own key or make the patterns disjoint",
+                        b.name
+                    ),
+                ))
+            }
+            _ => {
+                return Err(inv(
+                    "blocks",
+                    format!("mesh block '{}' has no material assigned", b.name),
+                ))
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// The stages of a generated schedule as scene stages (impoundment levels become hydrostatic
+/// loads on the slab face set `slab_upstream`).
+fn schedule_stages(schedule: &[CfrdStage], src: &MeshSource) -> Vec<StageSpec> {
+    let unit_weight = src.cfrd.as_ref().map_or(9810.0, |c| c.water_unit_weight);
+    schedule
+        .iter()
+        .map(|st| StageSpec {
+            name: st.name.clone(),
+            activate: st.activate.clone(),
+            loads: LoadsSpec {
+                hydrostatic: st
+                    .water_level
+                    .map(|level| HydrostaticSpec {
+                        faces: "slab_upstream".into(),
+                        level,
+                        unit_weight,
+                    })
+                    .into_iter()
+                    .collect(),
+                ..LoadsSpec::default()
+            },
+            load_steps: None,
+        })
+        .collect()
 }
 
 /// Options of an interface block, resolved from the scene and the mesh.
@@ -474,19 +581,26 @@ fn check_values(f: &SceneFile, inv: &dyn Fn(&str, String) -> SceneError) -> Resu
     Ok(())
 }
 
-/// Reads or generates the mesh, then validates it.
-fn build_mesh(src: &MeshSource, base: &Path) -> Result<Mesh, String> {
-    let mesh = match (&src.file, &src.box_, &src.dam) {
-        (Some(p), None, None) => {
+/// Reads or generates the mesh, then validates it; a generated CFRD also gives its schedule.
+fn build_mesh(src: &MeshSource, base: &Path) -> Result<(Mesh, Option<Vec<CfrdStage>>), String> {
+    let (mesh, schedule) = match (&src.file, &src.box_, &src.dam, &src.cfrd) {
+        (Some(p), None, None, None) => {
             let path: PathBuf = if p.is_absolute() { p.clone() } else { base.join(p) };
-            crate::mesh::gmsh::read_gmsh(&path).map_err(|e| e.to_string())?
+            (
+                crate::mesh::gmsh::read_gmsh(&path).map_err(|e| e.to_string())?,
+                None,
+            )
         }
-        (None, Some(b), None) => generate::box_mesh(b).map_err(|e| e.to_string())?,
-        (None, None, Some(d)) => generate::dam_mesh(d).map_err(|e| e.to_string())?,
-        _ => return Err("give exactly one of mesh.file, mesh.box or mesh.dam".into()),
+        (None, Some(b), None, None) => (generate::box_mesh(b).map_err(|e| e.to_string())?, None),
+        (None, None, Some(d), None) => (generate::dam_mesh(d).map_err(|e| e.to_string())?, None),
+        (None, None, None, Some(c)) => {
+            let model = cfrd_mesh(c).map_err(|e| e.to_string())?;
+            (model.mesh, Some(model.stages))
+        }
+        _ => return Err("give exactly one of mesh.file, mesh.box, mesh.dam or mesh.cfrd".into()),
     };
     mesh.validate().map_err(|e| e.to_string())?;
-    Ok(mesh)
+    Ok((mesh, schedule))
 }
 
 /// FNV-1a hash (hex) of bytes.

@@ -1,0 +1,1209 @@
+//! Generator of a complete concrete-faced rockfill dam model in a trapezoidal canyon: zoned
+//! rockfill body, face slab, slab–cushion interface, vertical and perimetric joints, and the
+//! construction/impoundment schedule of the seed paper (`seed/summary.md` §2.1,
+//! `spec/seismic.md` §5, `spec/models.md` §5–§6).
+//!
+//! # Coordinates
+//! x along the river (downstream positive), y along the dam axis, z up. **z is the absolute
+//! elevation** (m a.s.l.), so the reservoir levels of the schedule and of a scene's
+//! `hydrostatic` loads are elevations too (`level: 2840`). x = 0 at the upstream toe of the
+//! rockfill (the cushion face at the base), y = 0 at the centre of the valley bottom.
+//!
+//! ```text
+//!  section (x–z)                                      valley (y–z, looking downstream)
+//!            slab (outside the cushion face)           y_l(z)                    y_r(z)
+//!        crest_width                                    \  fan  |  central  |  fan  /
+//!      |<-->|                                            \ cols |   cols    | cols /
+//!     /|c|t|  rockfill  \                                 \     | (vertical)|     /
+//!    / |u|r|             \   1:m_d                         \    |           |    /
+//!   /  |s|a|              \                                 \___|___________|___/
+//!  x=0 (base_elevation)                                        -b/2         b/2
+//! ```
+//!
+//! # Mesh
+//! * **Rockfill body**: hexahedra on a structured (x, y, z) grid. Element layer `k` (one per
+//!   fill step) lies between two elevations; the layer boundaries include the slab stage tops
+//!   and the fill elevation at which slab stage I is cast, the remaining layers are spread
+//!   over the height (largest remainder). Across the section: one element of cushion (constant
+//!   horizontal width), one of transition, `rockfill_elements` of main rockfill between the
+//!   transition and the downstream face. Along the axis the columns follow the canyon: the
+//!   central columns are vertical planes y = const inside the valley bottom, the columns of
+//!   the two abutment "fans" are spread evenly between the abutment y_l(z) (or y_r(z)) and the
+//!   edge of the central part, so every element layer spans the valley width at its
+//!   elevation. x depends only on (i, z) and y only on (j, z), hence
+//!   det J = ∂x/∂ξ·∂y/∂η·∂z/∂ζ > 0 for every element.
+//! * **Slab**: one hexahedron through the thickness on every upstream face quad, its inner
+//!   face on the cushion face, its outer face offset along the outward normal by
+//!   t(z) = t_crest + g·(z_crest − z) (seed: 0.30 m + 0.0035·H). Panels (strips between
+//!   vertical joints) are `elements_per_panel` columns wide; each panel has its own nodes.
+//! * **Slab–cushion interface** (`interface_S`): one zero-thickness [`ElementKind::Interface8`]
+//!   per slab hex, face B (nodes 0–3) = the slab's inner face, face A (nodes 4–7) = the cushion
+//!   nodes at the same places; orientation (1, 0, −m_u), from the slab into the dam.
+//! * **Vertical joints** (`joint_vertical_S`): Interface8 between the side faces of adjacent
+//!   panels, face B on the panel with the smaller y; orientation +y.
+//! * **Perimetric joint** (`joint_perimetric_{bottom,left,right}_S`): Interface8 between the
+//!   slab's lower end faces (the bottom row on the valley floor, the end columns on the
+//!   abutments) and a **rigid plinth**: face A is a copy of the slab's end nodes, collected in
+//!   the node set `plinth`, which a scene fixes (spec §6.2, gap G4). Orientations: down-slope
+//!   (−m_u, 0, −1) at the bottom, −y on the left bank, +y on the right bank.
+//!
+//! Slab stage `S` (1-based) covers the element rows between the previous stage top and
+//! `slab_stage_tops[S-1]`. The slab is continuous across the stage tops (no horizontal
+//! construction joints).
+//!
+//! # Blocks, sets and numbering
+//! Blocks: `fill_KKK_cushion`, `fill_KKK_transition`, `fill_KKK_rockfill` (KKK = 001 … from the
+//! bottom), then per slab stage `slab_S`, `interface_S`, `joint_vertical_S`,
+//! `joint_perimetric_bottom_S` (stage 1 only), `joint_perimetric_left_S`,
+//! `joint_perimetric_right_S`; every interface/joint block carries its orientation. Node sets:
+//! `foundation` (rockfill nodes on the base and on both abutments), `plinth`. Face set:
+//! `slab_upstream` (outer slab faces, outward normal upstream; water pressure). Nodes: rockfill
+//! grid (i fastest, then j, then k), slab nodes panel by panel, plinth nodes; elements: fill
+//! (k, j, i), then per stage slab, interface, joints. Ids are index + 1. Same spec, same mesh.
+//!
+//! # Schedule
+//! One fill stage per element layer (`fill_KKK`); slab stage 1 (`slab_1`: slab, interface and
+//! joints of stage 1) right after the layer whose top is `slab_cast_elevation`; the other slab
+//! stages after the last fill layer; then `impoundment_stages` stages with the reservoir at
+//! z_base + (level − z_base)·n/N, n = 1 … N.
+//!
+//! # Simplifications (documented on purpose)
+//! * The canyon is prismatic along the river (abutments are planes y = y_l(z), y_r(z) for every
+//!   x); the foundation is rigid (fixed `foundation` set) and the plinth is rigid.
+//! * Fan columns near the abutments are not vertical: their panels are narrower at the base
+//!   than at the crest (the crest widths are near `panel_width`, the central panels have it
+//!   exactly). Joints follow the mesh lines.
+//! * Structured grid: elements of the main rockfill get thin near the crest (the section
+//!   narrows to `crest_width − cushion_width − transition_width`), no degenerated elements.
+//! * One element through the slab; the slab's outer face at the crest lies t·m/√(1+m²) above
+//!   the crest elevation (the slab is offset normal to the face).
+//! * No upstream blanket/ballast, no parapet wall, no secondary downstream rockfill zone.
+//! * Fill layers have equal thickness within each elevation segment, so with 86 layers slab
+//!   stage I is cast after layer 50 (the layer that ends at 2780 m), where the paper's
+//!   (non-uniform) layers put it after step 54.
+//! * Impoundment levels rise in equal increments; within a stage the solver interpolates the
+//!   water force linearly between the two levels.
+
+use crate::element::hex8::HEX8_FACES;
+use crate::mesh::error::MeshError;
+use crate::mesh::{Block, Element, ElementKind, Face, Mesh};
+use std::collections::BTreeMap;
+
+/// Local face of the slab hex that is its outer (upstream) face (`HEX8_FACES[2]`, ξ = −1).
+const SLAB_OUTER_FACE: u8 = 2;
+
+/// Parameters of [`cfrd_mesh`] (the scene's `mesh.cfrd`); omitted keys take the seed dam's
+/// values (`seed/summary.md` §2.1, `spec/seismic.md` §5).
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct CfrdSpec {
+    /// Maximum dam height H (m). Seed: 171.
+    pub height: f64,
+    /// Elevation of the base, i.e. of the valley bottom (m). Seed: 2681. The mesh's z is the
+    /// absolute elevation; the crest is at `base_elevation + height`.
+    pub base_elevation: f64,
+    /// Crest length along the dam axis (m). Seed: 355.
+    pub crest_length: f64,
+    /// Crest width (m). Seed: not given; 10.
+    pub crest_width: f64,
+    /// Upstream slope m_u (horizontal per vertical). Seed: 1.4.
+    pub upstream_slope: f64,
+    /// Downstream slope m_d (horizontal per vertical). Seed: 1.4.
+    pub downstream_slope: f64,
+    /// Width of the valley bottom b (m), 0 < b < crest_length. Default 100 (abutment slopes
+    /// tan θ = 2H/(355 − b) ≈ 53°).
+    pub valley_bottom_width: f64,
+    /// Share of the abutment run (crest_length − b) on the left bank (y < 0), in (0, 1);
+    /// default 0.5 (symmetric valley).
+    pub left_share: f64,
+    /// Horizontal width of the cushion zone (m). Default 3.
+    pub cushion_width: f64,
+    /// Horizontal width of the transition zone (m). Default 4.
+    pub transition_width: f64,
+    /// Top elevations of the slab stages (m), increasing, the last one at the crest.
+    /// Seed: [2737, 2805, 2852].
+    pub slab_stage_tops: Vec<f64>,
+    /// Fill elevation at which slab stage 1 is cast (m), between the top of stage 1 and the
+    /// crest. Seed: 2780 (step 54 of 86). The other stages are cast after the fill.
+    pub slab_cast_elevation: f64,
+    /// Slab thickness at the crest (m). Seed: 0.30.
+    pub slab_thickness_crest: f64,
+    /// Increase of the slab thickness per metre below the crest (m/m). Seed: 0.0035.
+    pub slab_thickness_gradient: f64,
+    /// Nominal slab panel width along the axis (m), i.e. the spacing of the vertical joints.
+    /// Default 15.
+    pub panel_width: f64,
+    /// Elements along the axis per slab panel (≥ 1).
+    pub elements_per_panel: usize,
+    /// Fill layers = construction steps = element layers over the height (≥ the number of
+    /// elevation segments, 4 for the seed). Seed: 86.
+    pub fill_layers: usize,
+    /// Elements across the main rockfill zone (≥ 1).
+    pub rockfill_elements: usize,
+    /// Final reservoir level (m, elevation), above the base and at most the crest. Seed: 2840.
+    pub impoundment_level: f64,
+    /// Number of impoundment stages (≥ 1).
+    pub impoundment_stages: usize,
+    /// Unit weight of water γ_w (N/m³) for the impoundment loads. Default 9810.
+    pub water_unit_weight: f64,
+}
+
+impl Default for CfrdSpec {
+    /// The seed dam at the paper's resolution (about 76 000 elements).
+    fn default() -> Self {
+        CfrdSpec {
+            height: 171.0,
+            base_elevation: 2681.0,
+            crest_length: 355.0,
+            crest_width: 10.0,
+            upstream_slope: 1.4,
+            downstream_slope: 1.4,
+            valley_bottom_width: 100.0,
+            left_share: 0.5,
+            cushion_width: 3.0,
+            transition_width: 4.0,
+            slab_stage_tops: vec![2737.0, 2805.0, 2852.0],
+            slab_cast_elevation: 2780.0,
+            slab_thickness_crest: 0.30,
+            slab_thickness_gradient: 0.0035,
+            panel_width: 15.0,
+            elements_per_panel: 2,
+            fill_layers: 86,
+            rockfill_elements: 14,
+            impoundment_level: 2840.0,
+            impoundment_stages: 6,
+            water_unit_weight: 9810.0,
+        }
+    }
+}
+
+/// One stage of the generated schedule.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CfrdStage {
+    /// Stage name (`fill_KKK`, `slab_S`, `impound_N`).
+    pub name: String,
+    /// Blocks placed at the start of the stage.
+    pub activate: Vec<String>,
+    /// Reservoir level (m, elevation) on the face set `slab_upstream` at the end of the stage
+    /// (impoundment stages only).
+    pub water_level: Option<f64>,
+}
+
+/// What [`cfrd_mesh`] returns besides the mesh: the schedule and a few derived numbers.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CfrdModel {
+    /// The mesh.
+    pub mesh: Mesh,
+    /// Fill, slab and impoundment stages, in order.
+    pub stages: Vec<CfrdStage>,
+    /// Elevations of the element-layer boundaries (m), bottom to top (`fill_layers + 1`).
+    pub layer_elevations: Vec<f64>,
+    /// y of the panel boundaries (vertical joints and slab ends) at the crest (m).
+    pub panel_edges_at_crest: Vec<f64>,
+}
+
+fn invalid(field: &str, reason: String) -> MeshError {
+    MeshError::InvalidParameter {
+        field: format!("mesh.cfrd.{field}"),
+        reason,
+    }
+}
+
+fn positive(field: &str, v: f64) -> Result<(), MeshError> {
+    if v.is_finite() && v > 0.0 {
+        Ok(())
+    } else {
+        Err(invalid(field, format!("must be a positive number, got {v}")))
+    }
+}
+
+fn non_negative(field: &str, v: f64) -> Result<(), MeshError> {
+    if v.is_finite() && v >= 0.0 {
+        Ok(())
+    } else {
+        Err(invalid(field, format!("must be a non-negative number, got {v}")))
+    }
+}
+
+/// Geometry derived from a checked spec.
+struct Layout {
+    /// Relative heights (above the base) of the layer boundaries.
+    h: Vec<f64>,
+    /// Element rows [start, end) of each slab stage.
+    stage_rows: Vec<(usize, usize)>,
+    /// Layer index after which slab stage 1 is cast (its top is the cast elevation).
+    cast_layer: usize,
+    /// Abutment runs (horizontal per vertical) on the left and right.
+    run: [f64; 2],
+    /// y of the edges of the central part.
+    central: [f64; 2],
+    /// Panels in the left fan, the central part, the right fan.
+    panels: [usize; 3],
+}
+
+impl CfrdSpec {
+    /// Crest elevation (m).
+    pub fn crest_elevation(&self) -> f64 {
+        self.base_elevation + self.height
+    }
+
+    /// Slab thickness (m) at elevation `z`: t = t_crest + g·(z_crest − z) (seed §2.1).
+    pub fn slab_thickness(&self, z: f64) -> f64 {
+        self.slab_thickness_crest + self.slab_thickness_gradient * (self.crest_elevation() - z)
+    }
+
+    /// Checks the values; errors name the YAML path `mesh.cfrd.<field>`.
+    fn layout(&self) -> Result<Layout, MeshError> {
+        positive("height", self.height)?;
+        if !self.base_elevation.is_finite() {
+            return Err(invalid("base_elevation", "must be finite".into()));
+        }
+        positive("crest_length", self.crest_length)?;
+        positive("crest_width", self.crest_width)?;
+        non_negative("upstream_slope", self.upstream_slope)?;
+        non_negative("downstream_slope", self.downstream_slope)?;
+        positive("valley_bottom_width", self.valley_bottom_width)?;
+        if self.valley_bottom_width >= self.crest_length {
+            return Err(invalid(
+                "valley_bottom_width",
+                format!(
+                    "{} m must be smaller than crest_length ({} m)",
+                    self.valley_bottom_width, self.crest_length
+                ),
+            ));
+        }
+        if !(self.left_share > 0.0 && self.left_share < 1.0) {
+            return Err(invalid(
+                "left_share",
+                format!("must lie in (0, 1), got {}", self.left_share),
+            ));
+        }
+        positive("cushion_width", self.cushion_width)?;
+        positive("transition_width", self.transition_width)?;
+        if self.cushion_width + self.transition_width >= self.crest_width {
+            return Err(invalid(
+                "transition_width",
+                format!(
+                    "cushion_width + transition_width = {} m leaves no main rockfill under the {} m crest",
+                    self.cushion_width + self.transition_width,
+                    self.crest_width
+                ),
+            ));
+        }
+        positive("slab_thickness_crest", self.slab_thickness_crest)?;
+        non_negative("slab_thickness_gradient", self.slab_thickness_gradient)?;
+        positive("panel_width", self.panel_width)?;
+        if self.elements_per_panel == 0 {
+            return Err(invalid("elements_per_panel", "must be at least 1".into()));
+        }
+        if self.rockfill_elements == 0 {
+            return Err(invalid("rockfill_elements", "must be at least 1".into()));
+        }
+        if self.impoundment_stages == 0 {
+            return Err(invalid("impoundment_stages", "must be at least 1".into()));
+        }
+        if !(self.water_unit_weight.is_finite()
+            && self.water_unit_weight > 100.0
+            && self.water_unit_weight < 1e5)
+        {
+            return Err(invalid(
+                "water_unit_weight",
+                format!("{} N/m³ is not plausible (SI: 9810)", self.water_unit_weight),
+            ));
+        }
+        let (zb, zc) = (self.base_elevation, self.crest_elevation());
+        let tol = 1e-9 * self.height;
+        let tops = &self.slab_stage_tops;
+        if tops.is_empty() {
+            return Err(invalid("slab_stage_tops", "lists no stage".into()));
+        }
+        for (s, &z) in tops.iter().enumerate() {
+            let below = if s == 0 { zb } else { tops[s - 1] };
+            if !(z.is_finite() && z > below + tol) {
+                return Err(invalid(
+                    &format!("slab_stage_tops[{s}]"),
+                    format!("{z} m must lie above {below} m (the base or the previous stage top)"),
+                ));
+            }
+        }
+        if (tops[tops.len() - 1] - zc).abs() > tol {
+            return Err(invalid(
+                &format!("slab_stage_tops[{}]", tops.len() - 1),
+                format!(
+                    "the last stage must end at the crest, {zc} m, got {} m",
+                    tops[tops.len() - 1]
+                ),
+            ));
+        }
+        let cast = self.slab_cast_elevation;
+        if !(cast.is_finite() && cast >= tops[0] - tol && cast <= zc + tol) {
+            return Err(invalid(
+                "slab_cast_elevation",
+                format!(
+                    "{cast} m must lie between the top of slab stage 1 ({} m) and the crest ({zc} m)",
+                    tops[0]
+                ),
+            ));
+        }
+        let level = self.impoundment_level;
+        if !(level.is_finite() && level > zb && level <= zc + tol) {
+            return Err(invalid(
+                "impoundment_level",
+                format!("{level} m must lie above the base ({zb} m) and at most at the crest ({zc} m)"),
+            ));
+        }
+
+        // layer boundaries: breakpoints, then the layers by largest remainder
+        let mut breaks: Vec<f64> = vec![0.0];
+        for z in tops.iter().chain(std::iter::once(&cast)) {
+            let h = (z - zb).clamp(0.0, self.height);
+            if breaks.iter().all(|b| (b - h).abs() > tol) {
+                breaks.push(h);
+            }
+        }
+        breaks.sort_by(f64::total_cmp);
+        let segments = breaks.len() - 1;
+        let nz = self.fill_layers;
+        if nz < segments {
+            return Err(invalid(
+                "fill_layers",
+                format!("{nz} is fewer than the {segments} elevation segments between the base, the slab stage tops and the cast elevation"),
+            ));
+        }
+        if nz > 100_000 {
+            return Err(invalid(
+                "fill_layers",
+                format!("{nz} is too many (at most 100000)"),
+            ));
+        }
+        let mut count = vec![1usize; segments];
+        let spare = (nz - segments) as f64;
+        let lens: Vec<f64> = breaks.windows(2).map(|w| w[1] - w[0]).collect();
+        let exact: Vec<f64> = lens.iter().map(|l| spare * l / self.height).collect();
+        for (c, e) in count.iter_mut().zip(&exact) {
+            *c += e.floor() as usize;
+        }
+        let mut order: Vec<usize> = (0..segments).collect();
+        order.sort_by(|&a, &b| {
+            (exact[b] - exact[b].floor())
+                .total_cmp(&(exact[a] - exact[a].floor()))
+                .then(a.cmp(&b))
+        });
+        let mut left = nz - count.iter().sum::<usize>();
+        for &s in order.iter().cycle() {
+            if left == 0 {
+                break;
+            }
+            count[s] += 1;
+            left -= 1;
+        }
+        let mut h = vec![0.0];
+        for (s, &c) in count.iter().enumerate() {
+            for q in 1..=c {
+                h.push(breaks[s] + lens[s] * q as f64 / c as f64);
+            }
+        }
+        let row_at = |z: f64| -> usize {
+            let target = z - zb;
+            h.iter()
+                .enumerate()
+                .min_by(|a, b| (a.1 - target).abs().total_cmp(&(b.1 - target).abs()))
+                .map(|(k, _)| k)
+                .unwrap_or(0)
+        };
+        let mut stage_rows = Vec::with_capacity(tops.len());
+        let mut start = 0;
+        for &z in tops {
+            let end = row_at(z);
+            stage_rows.push((start, end));
+            start = end;
+        }
+        let cast_layer = row_at(cast);
+
+        // canyon and panels
+        let runs = (self.crest_length - self.valley_bottom_width) / self.height;
+        let run = [self.left_share * runs, (1.0 - self.left_share) * runs];
+        let w = self.panel_width;
+        let n_central = ((self.valley_bottom_width / w + 1e-9).floor() as usize).saturating_sub(2);
+        let half = 0.5 * n_central as f64 * w;
+        let half_bottom = 0.5 * self.valley_bottom_width;
+        let fan_left = half_bottom + run[0] * self.height - half;
+        let fan_right = half_bottom + run[1] * self.height - half;
+        let panels = [
+            ((fan_left / w).round() as usize).max(1),
+            n_central,
+            ((fan_right / w).round() as usize).max(1),
+        ];
+        let ny = panels.iter().sum::<usize>() * self.elements_per_panel;
+        let nodes = (self.rockfill_elements as u128 + 3) * (ny as u128 + 1) * (nz as u128 + 1) * 2;
+        if nodes > u32::MAX as u128 / 2 {
+            return Err(invalid(
+                "fill_layers",
+                format!("the mesh would have about {nodes} nodes (more than 2^31)"),
+            ));
+        }
+        Ok(Layout {
+            h,
+            stage_rows,
+            cast_layer,
+            run,
+            central: [-half, half],
+            panels,
+        })
+    }
+}
+
+/// The three fill zones, in x order.
+const ZONES: [&str; 3] = ["cushion", "transition", "rockfill"];
+
+/// Builds the dam mesh and its construction/impoundment schedule (see the module docs).
+/// Every element is checked ([`Mesh::validate`]) before the mesh is returned.
+pub fn cfrd_mesh(spec: &CfrdSpec) -> Result<CfrdModel, MeshError> {
+    let lay = spec.layout()?;
+    let nz = spec.fill_layers;
+    let nr = spec.rockfill_elements;
+    let nx = 2 + nr;
+    let e = spec.elements_per_panel;
+    let n_panels = lay.panels.iter().sum::<usize>();
+    let ny = n_panels * e;
+    let (mu, md) = (spec.upstream_slope, spec.downstream_slope);
+    let base_width = (mu + md) * spec.height + spec.crest_width;
+    let zb = spec.base_elevation;
+
+    // column positions: y(j, h)
+    let y_left = |h: f64| -0.5 * spec.valley_bottom_width - lay.run[0] * h;
+    let y_right = |h: f64| 0.5 * spec.valley_bottom_width + lay.run[1] * h;
+    let [nl, nc, _] = lay.panels.map(|p| p * e);
+    let y_col = |j: usize, h: f64| -> f64 {
+        if j <= nl {
+            let a = y_left(h);
+            a + (lay.central[0] - a) * j as f64 / nl as f64
+        } else if j <= nl + nc {
+            lay.central[0] + spec.panel_width * (j - nl) as f64 / e as f64
+        } else {
+            let b = y_right(h);
+            lay.central[1] + (b - lay.central[1]) * (j - nl - nc) as f64 / (ny - nl - nc) as f64
+        }
+    };
+    let x_col = |i: usize, h: f64| -> f64 {
+        let x0 = mu * h;
+        match i {
+            0 => x0,
+            1 => x0 + spec.cushion_width,
+            _ => {
+                let a = x0 + spec.cushion_width + spec.transition_width;
+                let b = base_width - md * h;
+                a + (b - a) * (i - 2) as f64 / nr as f64
+            }
+        }
+    };
+
+    let mut mesh = Mesh::default();
+    // rockfill nodes
+    let fill_node = |i: usize, j: usize, k: usize| (i + (nx + 1) * (j + (ny + 1) * k)) as u32;
+    for k in 0..=nz {
+        let h = lay.h[k];
+        for j in 0..=ny {
+            let y = y_col(j, h);
+            for i in 0..=nx {
+                mesh.coords.push([x_col(i, h), y, zb + h]);
+            }
+        }
+    }
+    // slab nodes: panel p, local column jj ∈ 0..=e, row k, side 0 outer / 1 inner
+    let slab_base = mesh.coords.len();
+    let slab_node = |p: usize, jj: usize, k: usize, side: usize| {
+        (slab_base + side + 2 * (jj + (e + 1) * (k + (nz + 1) * p))) as u32
+    };
+    let norm = (1.0 + mu * mu).sqrt();
+    let n_out = [-1.0 / norm, 0.0, mu / norm];
+    for p in 0..n_panels {
+        for k in 0..=nz {
+            for jj in 0..=e {
+                let inner = mesh.coords[fill_node(0, p * e + jj, k) as usize];
+                let t = spec.slab_thickness(inner[2]);
+                let outer = [0, 1, 2].map(|c| inner[c] + t * n_out[c]);
+                mesh.coords.push(outer);
+                mesh.coords.push(inner);
+            }
+        }
+    }
+    let mut plinth_of: BTreeMap<u32, u32> = BTreeMap::new();
+    let mut plinth = |mesh: &mut Mesh, n: u32| -> u32 {
+        *plinth_of.entry(n).or_insert_with(|| {
+            mesh.coords.push(mesh.coords[n as usize]);
+            (mesh.coords.len() - 1) as u32
+        })
+    };
+
+    // blocks
+    let add_block =
+        |mesh: &mut Mesh, name: String, kind: ElementKind, orientation: Option<[f64; 3]>| -> u32 {
+            mesh.blocks.push(Block {
+                name,
+                kind,
+                orientation,
+            });
+            (mesh.blocks.len() - 1) as u32
+        };
+    for k in 0..nz {
+        for zone in ZONES {
+            add_block(
+                &mut mesh,
+                format!("fill_{:03}_{zone}", k + 1),
+                ElementKind::Hex8,
+                None,
+            );
+        }
+    }
+    let push = |mesh: &mut Mesh, kind: ElementKind, nodes: [u32; 8], block: u32| {
+        mesh.elements.push(Element {
+            id: mesh.elements.len() as u64 + 1,
+            kind,
+            nodes,
+            block,
+        });
+    };
+    // fill elements
+    for k in 0..nz {
+        for j in 0..ny {
+            for i in 0..nx {
+                let zone = i.min(2);
+                let nodes = [
+                    fill_node(i, j, k),
+                    fill_node(i + 1, j, k),
+                    fill_node(i + 1, j + 1, k),
+                    fill_node(i, j + 1, k),
+                    fill_node(i, j, k + 1),
+                    fill_node(i + 1, j, k + 1),
+                    fill_node(i + 1, j + 1, k + 1),
+                    fill_node(i, j + 1, k + 1),
+                ];
+                push(&mut mesh, ElementKind::Hex8, nodes, (3 * k + zone) as u32);
+            }
+        }
+    }
+    // slab, interface and joints, stage by stage
+    let mut slab_faces = Vec::new();
+    let mut stage_blocks: Vec<Vec<String>> = Vec::new();
+    for (s, &(k0, k1)) in lay.stage_rows.iter().enumerate() {
+        let sn = s + 1;
+        let mut names = Vec::new();
+        let slab_b = add_block(&mut mesh, format!("slab_{sn}"), ElementKind::Hex8, None);
+        let iface_b = add_block(
+            &mut mesh,
+            format!("interface_{sn}"),
+            ElementKind::Interface8,
+            Some([1.0, 0.0, -mu]),
+        );
+        names.push(format!("slab_{sn}"));
+        names.push(format!("interface_{sn}"));
+        let mut slab_hexes = Vec::new();
+        for p in 0..n_panels {
+            for k in k0..k1 {
+                for jj in 0..e {
+                    let nodes = [
+                        slab_node(p, jj, k, 0),
+                        slab_node(p, jj, k, 1),
+                        slab_node(p, jj + 1, k, 1),
+                        slab_node(p, jj + 1, k, 0),
+                        slab_node(p, jj, k + 1, 0),
+                        slab_node(p, jj, k + 1, 1),
+                        slab_node(p, jj + 1, k + 1, 1),
+                        slab_node(p, jj + 1, k + 1, 0),
+                    ];
+                    slab_faces.push(Face {
+                        element: mesh.elements.len() as u32,
+                        local_face: SLAB_OUTER_FACE,
+                        nodes: HEX8_FACES[SLAB_OUTER_FACE as usize].map(|a| nodes[a]),
+                    });
+                    push(&mut mesh, ElementKind::Hex8, nodes, slab_b);
+                    slab_hexes.push((p, jj, k));
+                }
+            }
+        }
+        for &(p, jj, k) in &slab_hexes {
+            let j = p * e + jj;
+            let nodes = [
+                slab_node(p, jj, k, 1),
+                slab_node(p, jj + 1, k, 1),
+                slab_node(p, jj + 1, k + 1, 1),
+                slab_node(p, jj, k + 1, 1),
+                fill_node(0, j, k),
+                fill_node(0, j + 1, k),
+                fill_node(0, j + 1, k + 1),
+                fill_node(0, j, k + 1),
+            ];
+            push(&mut mesh, ElementKind::Interface8, nodes, iface_b);
+        }
+        // a side face of panel p at local column jj, row k: outer/inner at k, then at k + 1
+        let side = |p: usize, jj: usize, k: usize| {
+            [
+                slab_node(p, jj, k, 0),
+                slab_node(p, jj, k, 1),
+                slab_node(p, jj, k + 1, 1),
+                slab_node(p, jj, k + 1, 0),
+            ]
+        };
+        if n_panels > 1 {
+            let b = add_block(
+                &mut mesh,
+                format!("joint_vertical_{sn}"),
+                ElementKind::Interface8,
+                Some([0.0, 1.0, 0.0]),
+            );
+            names.push(format!("joint_vertical_{sn}"));
+            for p in 0..n_panels - 1 {
+                for k in k0..k1 {
+                    let (fb, fa) = (side(p, e, k), side(p + 1, 0, k));
+                    let nodes = [fb[0], fb[1], fb[2], fb[3], fa[0], fa[1], fa[2], fa[3]];
+                    push(&mut mesh, ElementKind::Interface8, nodes, b);
+                }
+            }
+        }
+        let mut perimetric = |mesh: &mut Mesh, which: &str, orientation: [f64; 3], faces: Vec<[u32; 4]>| {
+            let name = format!("joint_perimetric_{which}_{sn}");
+            let b = add_block(mesh, name.clone(), ElementKind::Interface8, Some(orientation));
+            names.push(name);
+            for fb in faces {
+                let fa = fb.map(|n| plinth(mesh, n));
+                push(
+                    mesh,
+                    ElementKind::Interface8,
+                    [fb[0], fb[1], fb[2], fb[3], fa[0], fa[1], fa[2], fa[3]],
+                    b,
+                );
+            }
+        };
+        if k0 == 0 {
+            let faces = (0..n_panels)
+                .flat_map(|p| (0..e).map(move |jj| (p, jj)))
+                .map(|(p, jj)| {
+                    [
+                        slab_node(p, jj, 0, 0),
+                        slab_node(p, jj, 0, 1),
+                        slab_node(p, jj + 1, 0, 1),
+                        slab_node(p, jj + 1, 0, 0),
+                    ]
+                })
+                .collect();
+            perimetric(&mut mesh, "bottom", [-mu, 0.0, -1.0], faces);
+        }
+        perimetric(
+            &mut mesh,
+            "left",
+            [0.0, -1.0, 0.0],
+            (k0..k1).map(|k| side(0, 0, k)).collect(),
+        );
+        perimetric(
+            &mut mesh,
+            "right",
+            [0.0, 1.0, 0.0],
+            (k0..k1).map(|k| side(n_panels - 1, e, k)).collect(),
+        );
+        stage_blocks.push(names);
+    }
+
+    // sets
+    let mut foundation = Vec::new();
+    for k in 0..=nz {
+        for j in 0..=ny {
+            if k == 0 || j == 0 || j == ny {
+                foundation.extend((0..=nx).map(|i| fill_node(i, j, k)));
+            }
+        }
+    }
+    foundation.sort_unstable();
+    let plinth_nodes: Vec<u32> = plinth_of
+        .values()
+        .copied()
+        .collect::<std::collections::BTreeSet<u32>>()
+        .into_iter()
+        .collect();
+    mesh.node_sets.insert("foundation".into(), foundation);
+    mesh.node_sets.insert("plinth".into(), plinth_nodes);
+    mesh.face_sets.insert("slab_upstream".into(), slab_faces);
+    mesh.node_ids = (1..=mesh.coords.len() as u64).collect();
+    mesh.validate()?;
+
+    // schedule
+    let mut stages = Vec::new();
+    let slab_stage = |s: usize| CfrdStage {
+        name: format!("slab_{}", s + 1),
+        activate: stage_blocks[s].clone(),
+        water_level: None,
+    };
+    for k in 0..nz {
+        stages.push(CfrdStage {
+            name: format!("fill_{:03}", k + 1),
+            activate: ZONES.iter().map(|z| format!("fill_{:03}_{z}", k + 1)).collect(),
+            water_level: None,
+        });
+        if k + 1 == lay.cast_layer {
+            stages.push(slab_stage(0));
+        }
+    }
+    for s in 1..lay.stage_rows.len() {
+        stages.push(slab_stage(s));
+    }
+    let n_imp = spec.impoundment_stages;
+    for n in 1..=n_imp {
+        stages.push(CfrdStage {
+            name: format!("impound_{n}"),
+            activate: Vec::new(),
+            water_level: Some(zb + (spec.impoundment_level - zb) * n as f64 / n_imp as f64),
+        });
+    }
+    let h_top = spec.height;
+    let panel_edges_at_crest: Vec<f64> = (0..=n_panels).map(|p| y_col(p * e, h_top)).collect();
+    Ok(CfrdModel {
+        mesh,
+        stages,
+        layer_elevations: lay.h.iter().map(|h| zb + h).collect(),
+        panel_edges_at_crest,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::element::hex8::{face_coords, quad_area_vector};
+    use crate::element::interface8::{Interface8Geometry, InterfaceRule};
+    use crate::element::interface_frame::FrameAxes;
+    use std::collections::{BTreeSet, HashMap};
+
+    /// The `mesh.cfrd` of a committed seed scene.
+    fn scene_spec(resolution: &str) -> CfrdSpec {
+        let path = format!(
+            "{}/inputs/scenes/seed_{resolution}_hyperbolic.yaml",
+            env!("CARGO_MANIFEST_DIR")
+        );
+        let text = std::fs::read_to_string(&path).expect("seed scene");
+        let file = crate::scene::validate::parse(&text, &path).expect("parse");
+        file.mesh.cfrd.expect("mesh.cfrd")
+    }
+
+    fn centroid(x: &[[f64; 3]]) -> [f64; 3] {
+        [0, 1, 2].map(|c| x.iter().map(|p| p[c]).sum::<f64>() / x.len() as f64)
+    }
+
+    fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+        a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+    }
+
+    fn block_elements<'a>(mesh: &'a Mesh, prefix: &'a str) -> impl Iterator<Item = usize> + 'a {
+        (0..mesh.elements.len()).filter(move |&e| {
+            mesh.blocks[mesh.elements[e].block as usize]
+                .name
+                .starts_with(prefix)
+        })
+    }
+
+    #[test]
+    fn seed_scene_meshes_validate_and_the_fine_one_matches_the_paper_size() {
+        for res in ["coarse", "medium", "fine"] {
+            let spec = scene_spec(res);
+            let model = cfrd_mesh(&spec).expect("mesh");
+            let mesh = &model.mesh;
+            let count = |kind: ElementKind| mesh.elements.iter().filter(|e| e.kind == kind).count();
+            eprintln!(
+                "seed {res}: {} elements ({} hex8, {} interface8), {} nodes, {} blocks, {} stages",
+                mesh.elements.len(),
+                count(ElementKind::Hex8),
+                count(ElementKind::Interface8),
+                mesh.num_nodes(),
+                mesh.blocks.len(),
+                model.stages.len()
+            );
+            mesh.validate().expect("valid");
+            // every block has elements and every element's kind is its block's
+            let mut used = vec![0usize; mesh.blocks.len()];
+            for el in &mesh.elements {
+                used[el.block as usize] += 1;
+                assert_eq!(el.kind, mesh.blocks[el.block as usize].kind);
+            }
+            assert!(used.iter().all(|&n| n > 0), "empty block");
+            for b in &mesh.blocks {
+                assert_eq!(
+                    b.orientation.is_some(),
+                    b.kind == ElementKind::Interface8,
+                    "{}",
+                    b.name
+                );
+            }
+            if res == "fine" {
+                let ratio = mesh.elements.len() as f64 / 74_521.0;
+                assert!((ratio - 1.0).abs() <= 0.15, "{} elements", mesh.elements.len());
+            }
+        }
+        let again = cfrd_mesh(&scene_spec("coarse")).expect("mesh");
+        assert_eq!(
+            again,
+            cfrd_mesh(&scene_spec("coarse")).expect("mesh"),
+            "deterministic"
+        );
+    }
+
+    #[test]
+    fn interface_normals_point_from_the_slab_into_the_dam() {
+        for spec in [scene_spec("coarse"), scene_spec("medium")] {
+            let model = cfrd_mesh(&spec).expect("mesh");
+            let mesh = &model.mesh;
+            let m = spec.upstream_slope;
+            let into_dam = [1.0 / (1.0 + m * m).sqrt(), 0.0, -m / (1.0 + m * m).sqrt()];
+            // the solid element on each side of every interface face, by its face nodes
+            let mut owner: HashMap<BTreeSet<u32>, Vec<usize>> = HashMap::new();
+            for (e, el) in mesh.elements.iter().enumerate() {
+                if el.kind == ElementKind::Hex8 {
+                    for f in HEX8_FACES {
+                        owner
+                            .entry(f.iter().map(|&a| el.nodes[a]).collect())
+                            .or_default()
+                            .push(e);
+                    }
+                }
+            }
+            let mut checked = 0;
+            for (e, el) in mesh.elements.iter().enumerate() {
+                if el.kind != ElementKind::Interface8 {
+                    continue;
+                }
+                let block = &mesh.blocks[el.block as usize];
+                let n_ref = block.orientation.expect("orientation");
+                let geo = Interface8Geometry::new(
+                    &mesh.element_coords(e),
+                    &n_ref,
+                    &FrameAxes::default(),
+                    InterfaceRule::NewtonCotes,
+                )
+                .unwrap_or_else(|err| panic!("{}: element {}: {err}", block.name, el.id));
+                assert!(mesh.zero_thickness(e), "element {} is not flat", el.id);
+                let n: [f64; 3] = geo.frames[0].n.into();
+                let mid = centroid(&geo.positions);
+                // face B belongs to a slab hex, which lies on the −n side
+                let face_b: BTreeSet<u32> = el.nodes[..4].iter().copied().collect();
+                let slab = owner[&face_b][0];
+                assert!(mesh.blocks[mesh.elements[slab].block as usize]
+                    .name
+                    .starts_with("slab_"));
+                let c = centroid(&mesh.element_coords(slab));
+                assert!(
+                    dot(&[c[0] - mid[0], c[1] - mid[1], c[2] - mid[2]], &n) < 0.0,
+                    "element {}",
+                    el.id
+                );
+                // face A: the cushion (slab-cushion interface), the next panel (joints) or the plinth
+                let face_a: BTreeSet<u32> = el.nodes[4..].iter().copied().collect();
+                if block.name.starts_with("interface_") {
+                    let err = (0..3).map(|i| (n[i] - into_dam[i]).abs()).fold(0.0, f64::max);
+                    assert!(err < 1e-9, "element {}: normal {n:?}", el.id);
+                    let cushion = owner[&face_a][0];
+                    let name = &mesh.blocks[mesh.elements[cushion].block as usize].name;
+                    assert!(name.ends_with("_cushion"), "{name}");
+                    let c = centroid(&mesh.element_coords(cushion));
+                    assert!(dot(&[c[0] - mid[0], c[1] - mid[1], c[2] - mid[2]], &n) > 0.0);
+                } else if block.name.starts_with("joint_vertical_") {
+                    assert!(n[1] > 0.8, "element {}: normal {n:?}", el.id);
+                    let next = owner[&face_a][0];
+                    assert!(mesh.blocks[mesh.elements[next].block as usize]
+                        .name
+                        .starts_with("slab_"));
+                } else {
+                    assert!(block.name.starts_with("joint_perimetric_"), "{}", block.name);
+                    assert!(dot(&n, &n_ref) > 0.5 * dot(&n_ref, &n_ref).sqrt());
+                    let plinth = &mesh.node_sets["plinth"];
+                    assert!(el.nodes[4..].iter().all(|n| plinth.binary_search(n).is_ok()));
+                    assert!(!owner.contains_key(&face_a), "plinth nodes belong to no solid");
+                }
+                checked += 1;
+            }
+            assert!(checked > 0);
+        }
+    }
+
+    #[test]
+    fn slab_thickness_is_030_at_the_crest_and_090_at_the_base() {
+        let spec = scene_spec("medium");
+        let mesh = cfrd_mesh(&spec).expect("mesh").mesh;
+        let (zb, zc) = (spec.base_elevation, spec.crest_elevation());
+        let (mut at_crest, mut at_base) = (Vec::new(), Vec::new());
+        for e in block_elements(&mesh, "slab_") {
+            let x = mesh.element_coords(e);
+            // node 1 (inner) − node 0 (outer) at the bottom, node 5 − node 4 at the top
+            for (outer, inner) in [(0, 1), (4, 5)] {
+                let d = [0, 1, 2].map(|c| x[inner][c] - x[outer][c]);
+                let t = dot(&d, &d).sqrt();
+                if (x[inner][2] - zc).abs() < 1e-9 {
+                    at_crest.push(t);
+                }
+                if (x[inner][2] - zb).abs() < 1e-9 {
+                    at_base.push(t);
+                }
+            }
+        }
+        assert!(!at_crest.is_empty() && !at_base.is_empty());
+        assert!(at_crest.iter().all(|t| (t - 0.30).abs() < 1e-12), "{at_crest:?}");
+        assert!(at_base.iter().all(|t| (t - 0.8985).abs() < 1e-12), "{at_base:?}");
+    }
+
+    #[test]
+    fn panels_have_the_requested_widths_and_joints_sit_on_their_edges() {
+        for res in ["medium", "fine"] {
+            let spec = scene_spec(res);
+            let model = cfrd_mesh(&spec).expect("mesh");
+            let edges = &model.panel_edges_at_crest;
+            let widths: Vec<f64> = edges.windows(2).map(|w| w[1] - w[0]).collect();
+            eprintln!("seed {res}: panel widths at the crest {widths:.2?}");
+            // spec/seismic.md §5.2: vertical joints every 12-18 m
+            assert!(widths.iter().all(|&w| (12.0..=18.0).contains(&w)), "{widths:?}");
+            let central = widths
+                .iter()
+                .filter(|&&w| (w - spec.panel_width).abs() < 1e-9)
+                .count();
+            assert!(central >= 4, "{central} panels of exactly {} m", spec.panel_width);
+            assert!((edges[edges.len() - 1] - edges[0] - spec.crest_length).abs() < 1e-9);
+            // every vertical joint node at the crest sits on an inner panel edge
+            let mesh = &model.mesh;
+            let zc = spec.crest_elevation();
+            let mut seen = BTreeSet::new();
+            for e in block_elements(mesh, "joint_vertical_") {
+                for x in mesh.element_coords(e) {
+                    if (x[2] - zc).abs() < 1e-9 {
+                        let k = edges[1..edges.len() - 1]
+                            .iter()
+                            .position(|y| (y - x[1]).abs() < 1e-9);
+                        seen.insert(
+                            k.unwrap_or_else(|| panic!("joint node at y = {} is off the panel edges", x[1])),
+                        );
+                    }
+                }
+            }
+            assert_eq!(seen.len(), edges.len() - 2, "every inner panel edge has a joint");
+        }
+    }
+
+    #[test]
+    fn schedule_casts_the_slab_stages_and_impounds_as_in_the_seed() {
+        let spec = scene_spec("fine");
+        let model = cfrd_mesh(&spec).expect("mesh");
+        let names: Vec<&str> = model.stages.iter().map(|s| s.name.as_str()).collect();
+        let fills: Vec<usize> = (0..names.len())
+            .filter(|&i| names[i].starts_with("fill_"))
+            .collect();
+        assert_eq!(fills.len(), 86);
+        for (k, &i) in fills.iter().enumerate() {
+            assert_eq!(names[i], format!("fill_{:03}", k + 1));
+        }
+        let pos = |n: &str| names.iter().position(|s| *s == n).expect(n);
+        // slab stage 1 right after the fill stage whose layer top is 2780 m
+        let s1 = pos("slab_1");
+        let fill_before = s1 - 1;
+        assert!(names[fill_before].starts_with("fill_"));
+        let layer: usize = names[fill_before][5..].parse().expect("layer");
+        assert!(
+            (model.layer_elevations[layer] - 2780.0).abs() < 1e-9,
+            "{}",
+            model.layer_elevations[layer]
+        );
+        eprintln!("seed fine: slab stage I cast after fill stage {layer} of 86");
+        let last_fill = *fills.last().expect("fills");
+        assert!(pos("slab_2") > last_fill && pos("slab_3") == pos("slab_2") + 1);
+        // slab blocks of stage 1 span the rows up to 2737 m
+        let tops = &model.layer_elevations;
+        assert!(
+            tops.iter().any(|z| (z - 2737.0).abs() < 1e-9) && tops.iter().any(|z| (z - 2805.0).abs() < 1e-9)
+        );
+        for (s, top) in [(1, 2737.0), (2, 2805.0), (3, 2852.0)] {
+            let b = model.mesh.block_index(&format!("slab_{s}")).expect("slab block");
+            let zmax = model
+                .mesh
+                .elements
+                .iter()
+                .filter(|el| el.block == b)
+                .flat_map(|el| [1, 2, 5, 6].map(|a| model.mesh.coords[el.nodes[a] as usize][2]))
+                .fold(f64::MIN, f64::max);
+            assert!(
+                (zmax - top).abs() < 1e-9,
+                "slab_{s}: top of the inner face {zmax}"
+            );
+            assert!(model.stages[pos(&format!("slab_{s}"))]
+                .activate
+                .contains(&format!("interface_{s}")));
+        }
+        // impoundment: after the slabs, rising to 2840 m
+        let levels: Vec<f64> = model.stages.iter().filter_map(|s| s.water_level).collect();
+        assert_eq!(levels.len(), spec.impoundment_stages);
+        assert!(levels.windows(2).all(|w| w[1] > w[0]));
+        assert!((levels[levels.len() - 1] - 2840.0).abs() < 1e-9);
+        assert!(model.stages[pos("slab_3") + 1..]
+            .iter()
+            .all(|s| s.water_level.is_some()));
+        // every block is placed exactly once
+        let placed: Vec<&String> = model.stages.iter().flat_map(|s| &s.activate).collect();
+        let unique: BTreeSet<&String> = placed.iter().copied().collect();
+        assert_eq!(placed.len(), unique.len());
+        assert_eq!(unique.len(), model.mesh.blocks.len());
+    }
+
+    #[test]
+    fn interfaces_cover_the_slab_face_exactly_once() {
+        let spec = scene_spec("medium");
+        let mesh = cfrd_mesh(&spec).expect("mesh").mesh;
+        let m = spec.upstream_slope;
+        // the upstream face: a trapezoid of slope length H√(1+m²) between widths b and L
+        let exact = 0.5 * (spec.valley_bottom_width + spec.crest_length) * spec.height * (1.0 + m * m).sqrt();
+        let mut quads = BTreeSet::new();
+        let mut area = 0.0;
+        for e in block_elements(&mesh, "interface_") {
+            let el = &mesh.elements[e];
+            let geo = Interface8Geometry::new(
+                &mesh.element_coords(e),
+                &mesh.blocks[el.block as usize].orientation.expect("n_ref"),
+                &FrameAxes::default(),
+                InterfaceRule::NewtonCotes,
+            )
+            .expect("geometry");
+            area += geo.area();
+            assert!(
+                quads.insert(el.nodes[..4].iter().copied().collect::<BTreeSet<u32>>()),
+                "face twice"
+            );
+        }
+        // the inner faces (local face 3, ξ = +1) of the slab hexes are exactly the faces B
+        let mut slab_area = 0.0;
+        let mut slab_quads = BTreeSet::new();
+        for e in block_elements(&mesh, "slab_") {
+            let x = mesh.element_coords(e);
+            let a = quad_area_vector(&face_coords(&x, 3));
+            slab_area += dot(&a, &a).sqrt();
+            slab_quads.insert(
+                HEX8_FACES[3]
+                    .iter()
+                    .map(|&a| mesh.elements[e].nodes[a])
+                    .collect::<BTreeSet<u32>>(),
+            );
+        }
+        assert_eq!(quads, slab_quads);
+        assert!(
+            (area - exact).abs() < 1e-9 * exact,
+            "interface area {area} vs face {exact}"
+        );
+        assert!(
+            (slab_area - exact).abs() < 1e-9 * exact,
+            "slab face {slab_area} vs {exact}"
+        );
+        // water acts on the outer faces, one per slab hex
+        assert_eq!(mesh.face_sets["slab_upstream"].len(), slab_quads.len());
+    }
+
+    #[test]
+    fn bad_spec_values_name_their_yaml_path() {
+        let seed = CfrdSpec {
+            fill_layers: 8,
+            rockfill_elements: 2,
+            ..CfrdSpec::default()
+        };
+        let cases: Vec<(CfrdSpec, &str)> = vec![
+            (
+                CfrdSpec {
+                    height: -1.0,
+                    ..seed.clone()
+                },
+                "mesh.cfrd.height",
+            ),
+            (
+                CfrdSpec {
+                    valley_bottom_width: 400.0,
+                    ..seed.clone()
+                },
+                "mesh.cfrd.valley_bottom_width",
+            ),
+            (
+                CfrdSpec {
+                    left_share: 1.0,
+                    ..seed.clone()
+                },
+                "mesh.cfrd.left_share",
+            ),
+            (
+                CfrdSpec {
+                    transition_width: 8.0,
+                    ..seed.clone()
+                },
+                "mesh.cfrd.transition_width",
+            ),
+            (
+                CfrdSpec {
+                    slab_stage_tops: vec![2737.0, 2700.0, 2852.0],
+                    ..seed.clone()
+                },
+                "mesh.cfrd.slab_stage_tops[1]",
+            ),
+            (
+                CfrdSpec {
+                    slab_stage_tops: vec![2737.0, 2850.0],
+                    ..seed.clone()
+                },
+                "mesh.cfrd.slab_stage_tops[1]",
+            ),
+            (
+                CfrdSpec {
+                    slab_cast_elevation: 2700.0,
+                    ..seed.clone()
+                },
+                "mesh.cfrd.slab_cast_elevation",
+            ),
+            (
+                CfrdSpec {
+                    fill_layers: 3,
+                    ..seed.clone()
+                },
+                "mesh.cfrd.fill_layers",
+            ),
+            (
+                CfrdSpec {
+                    elements_per_panel: 0,
+                    ..seed.clone()
+                },
+                "mesh.cfrd.elements_per_panel",
+            ),
+            (
+                CfrdSpec {
+                    impoundment_level: 2900.0,
+                    ..seed.clone()
+                },
+                "mesh.cfrd.impoundment_level",
+            ),
+            (
+                CfrdSpec {
+                    panel_width: 0.0,
+                    ..seed.clone()
+                },
+                "mesh.cfrd.panel_width",
+            ),
+        ];
+        for (spec, path) in cases {
+            let err = cfrd_mesh(&spec).expect_err(path).to_string();
+            assert!(err.contains(&format!("{path}:")), "{path}: {err}");
+        }
+    }
+
+    #[test]
+    fn asymmetric_narrow_valleys_give_valid_meshes() {
+        for (b, share, w, e) in [(20.0, 0.3, 12.0, 1), (300.0, 0.8, 15.0, 3), (40.0, 0.5, 50.0, 2)] {
+            let spec = CfrdSpec {
+                valley_bottom_width: b,
+                left_share: share,
+                panel_width: w,
+                elements_per_panel: e,
+                fill_layers: 6,
+                rockfill_elements: 2,
+                ..CfrdSpec::default()
+            };
+            let model = cfrd_mesh(&spec).unwrap_or_else(|err| panic!("b {b}: {err}"));
+            let edges = &model.panel_edges_at_crest;
+            let left = -0.5 * b - share * (spec.crest_length - b);
+            assert!((edges[0] - left).abs() < 1e-9, "{edges:?}");
+        }
+    }
+}

@@ -1,0 +1,151 @@
+//! Scene tests: block patterns and the generated CFRD schedule.
+
+use super::validate::block_pattern_matches;
+use super::{Scene, SceneError, Term};
+use std::path::Path;
+
+/// A box of three layers with the given `blocks` section.
+fn box_scene(blocks: &str) -> Result<Scene, SceneError> {
+    let text = format!(
+        "name: t\nunits: SI\nmesh: {{ box: {{ divisions: [1, 1, 3], layers: 3 }} }}\n\
+         materials:\n  a: {{ model: elastic, young: 1.0e7, poisson: 0.3, density: 2000.0 }}\n  \
+         b: {{ model: elastic, young: 2.0e7, poisson: 0.3, density: 2000.0 }}\n\
+         blocks:\n{blocks}"
+    );
+    Scene::from_str(&text, "t.yaml", Path::new("."))
+}
+
+fn message(r: Result<Scene, SceneError>) -> String {
+    r.expect_err("invalid scene").to_string()
+}
+
+#[test]
+fn block_patterns_match_runs_of_characters() {
+    for (p, n, hit) in [
+        ("fill_*_cushion", "fill_012_cushion", true),
+        ("fill_*_cushion", "fill__cushion", true),
+        ("fill_*_cushion", "fill_012_transition", false),
+        ("*", "anything", true),
+        ("slab_*", "slab_1", true),
+        ("slab_*", "xslab_1", false),
+        ("*_1", "joint_vertical_1", true),
+        ("*_1", "joint_vertical_11", false),
+        ("a*b*c", "aXbYc", true),
+        ("a*b*c", "aXcYb", false),
+        ("exact", "exact", true),
+        ("exact", "exactly", false),
+    ] {
+        assert_eq!(block_pattern_matches(p, n), hit, "{p} vs {n}");
+    }
+}
+
+#[test]
+fn an_exact_block_key_wins_over_a_pattern() {
+    let scene = box_scene("  layer_*: { material: a }\n  layer_2: { material: b }\n").expect("scene");
+    let young: Vec<f64> = scene
+        .block_materials
+        .iter()
+        .map(|m| match m {
+            crate::material::BlockMaterial::Solid(crate::material::SolidParams::Elastic(p)) => p.young,
+            other => panic!("{other:?}"),
+        })
+        .collect();
+    assert_eq!(young, [1.0e7, 2.0e7, 1.0e7]);
+}
+
+#[test]
+fn a_block_matched_by_two_patterns_is_an_error_naming_both() {
+    let err = message(box_scene(
+        "  layer_*: { material: a }\n  '*_2': { material: b }\n",
+    ));
+    assert!(
+        err.contains("blocks.*_2") && err.contains("blocks.layer_*") && err.contains("'layer_2'"),
+        "{err}"
+    );
+}
+
+#[test]
+fn a_pattern_matching_no_block_is_an_error() {
+    let err = message(box_scene(
+        "  layer_*: { material: a }\n  slab_*: { material: b }\n",
+    ));
+    assert!(
+        err.contains("blocks.slab_*") && err.contains("matches no block"),
+        "{err}"
+    );
+    let err = message(box_scene(
+        "  layer_1: { material: a }\n  layer_[23]: { material: b }\n",
+    ));
+    assert!(err.contains("layer_[23]"), "{err}");
+}
+
+#[test]
+fn a_cfrd_scene_without_stages_runs_the_generated_schedule() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/inputs/scenes/seed_coarse_gp_interface.yaml"
+    );
+    let scene = Scene::load(Path::new(path)).expect("seed scene");
+    let names: Vec<&str> = scene.stages.iter().map(|s| s.name.as_str()).collect();
+    let spec = scene.file.mesh.cfrd.clone().expect("cfrd");
+    assert_eq!(
+        names.iter().filter(|n| n.starts_with("fill_")).count(),
+        spec.fill_layers
+    );
+    assert_eq!(scene.file.stages.len(), scene.stages.len());
+    // every block is placed once, the slab stages place their interface and joints
+    let mut placed: Vec<u32> = scene.stages.iter().flat_map(|s| s.activate.clone()).collect();
+    placed.sort_unstable();
+    assert_eq!(placed, (0..scene.mesh.blocks.len() as u32).collect::<Vec<_>>());
+    let slab_3 = &scene.stages[names.iter().position(|n| *n == "slab_3").expect("slab_3")];
+    let placed_3: Vec<&str> = slab_3
+        .activate
+        .iter()
+        .map(|&b| scene.mesh.blocks[b as usize].name.as_str())
+        .collect();
+    assert!(
+        placed_3.contains(&"interface_3") && placed_3.contains(&"joint_vertical_3"),
+        "{placed_3:?}"
+    );
+    // gravity everywhere, water on the slab only in the impoundment stages, up to 2840 m
+    let mut last_level = None;
+    for st in &scene.stages {
+        assert!(matches!(st.terms[0], Term::Gravity { .. }), "{}", st.name);
+        let water: Vec<f64> = st
+            .terms
+            .iter()
+            .filter_map(|t| match t {
+                Term::Hydrostatic { faces, level, .. } if faces == "slab_upstream" => Some(*level),
+                _ => None,
+            })
+            .collect();
+        assert_eq!(
+            water.len(),
+            usize::from(st.name.starts_with("impound_")),
+            "{}",
+            st.name
+        );
+        if let Some(&l) = water.first() {
+            last_level = Some(l);
+        }
+    }
+    assert_eq!(last_level, Some(2840.0));
+    // the interface blocks got their orientations from the generator
+    let m = spec.upstream_slope;
+    let ib = scene.mesh.block_index("interface_1").expect("interface_1") as usize;
+    assert_eq!(
+        scene.block_interface[ib].expect("interface").orientation,
+        [1.0, 0.0, -m]
+    );
+}
+
+#[test]
+fn a_bad_cfrd_value_names_its_yaml_path_in_the_scene_error() {
+    let text = "name: t\nunits: SI\nmesh: { cfrd: { fill_layers: 8, panel_width: -3.0 } }\n\
+                materials: {}\nblocks: {}\n";
+    let err = message(Scene::from_str(text, "t.yaml", Path::new(".")));
+    assert!(err.contains("mesh.cfrd.panel_width"), "{err}");
+    let text = "name: t\nunits: SI\nmesh: { cfrd: { fill_layer: 8 } }\nmaterials: {}\nblocks: {}\n";
+    let err = message(Scene::from_str(text, "t.yaml", Path::new(".")));
+    assert!(err.contains("mesh.cfrd") && err.contains("fill_layer"), "{err}");
+}
