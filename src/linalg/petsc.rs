@@ -414,6 +414,10 @@ pub struct SolveStats {
 /// A Krylov solver with its preconditioner.
 pub struct Ksp {
     raw: p::KSP,
+    comm: mpi::ffi::MPI_Comm,
+    rtol: f64,
+    max_it: u32,
+    symmetric: bool,
 }
 
 impl Ksp {
@@ -423,7 +427,20 @@ impl Ksp {
     pub fn new(petsc: &Petsc, rtol: f64, max_it: u32, symmetric: bool) -> Result<Ksp, PetscError> {
         let mut raw: p::KSP = null_mut();
         call!(KSPCreate(petsc.comm, &mut raw))?;
-        let k = Ksp { raw };
+        let k = Ksp {
+            raw,
+            comm: petsc.comm,
+            rtol,
+            max_it,
+            symmetric,
+        };
+        k.configure()?;
+        Ok(k)
+    }
+
+    /// cfrd's defaults on a new KSP (see [`Ksp::new`]).
+    fn configure(&self) -> Result<(), PetscError> {
+        let (k, rtol, max_it, symmetric) = (self, self.rtol, self.max_it, self.symmetric);
         if symmetric {
             call!(KSPSetType(k.raw, p::KSPCG.as_ptr() as *const c_char))?;
         } else {
@@ -436,8 +453,24 @@ impl Ksp {
         call!(KSPGetPC(k.raw, &mut pc))?;
         call!(PCSetType(pc, p::PCGAMG.as_ptr() as *const c_char))?;
         call!(KSPSetTolerances(k.raw, rtol, 1e-300, 1e30, max_it as i32))?;
-        call!(KSPSetNormType(k.raw, p::KSP_NORM_UNPRECONDITIONED))?;
-        Ok(k)
+        call!(KSPSetNormType(k.raw, p::KSP_NORM_UNPRECONDITIONED))
+    }
+
+    /// Replaces the solver by a new one with the same settings and operator `a`: the next solve
+    /// builds the preconditioner afresh (GAMG otherwise reuses the interpolation of its first
+    /// set-up, `-pc_gamg_reuse_interpolation`). Called at the start of every stage, so a stage's
+    /// solves do not depend on the earlier stages and a restart from a checkpoint repeats them
+    /// exactly.
+    pub fn reset(&mut self, a: &Matrix) -> Result<(), PetscError> {
+        let mut raw: p::KSP = null_mut();
+        call!(KSPCreate(self.comm, &mut raw))?;
+        // SAFETY: created by KSPCreate, destroyed once; replaced by the new solver below.
+        unsafe {
+            p::KSPDestroy(&mut self.raw);
+        }
+        self.raw = raw;
+        self.configure()?;
+        self.set_operator(a)
     }
 
     /// Sets the operator (also used to build the preconditioner) and applies PETSc options.
