@@ -347,6 +347,8 @@ mod tests {
             interface_points: 16,
             interface_open: 2,
             interface_slipping: 3,
+            restarted_after_stage: Some(2),
+            checkpoint_seconds: 0.25,
             peak_memory_bytes: 2048,
             peak_memory_bytes_per_rank: vec![1024, 2048],
         };

@@ -278,7 +278,7 @@ pub fn read(
         if lens.len() != ne || node_active.len() as u64 != n_nodes {
             return Err(bad("state lengths or node flags do not fit the mesh"));
         }
-        let width = if ne == 0 { 0 } else { packed.len() / ne };
+        let width = packed.len().checked_div(ne).unwrap_or(0);
         if packed.len() != width * ne || lens.iter().any(|&l| l as usize > width) {
             return Err(bad("the stored states do not fit their lengths"));
         }
