@@ -128,6 +128,37 @@ mod tests {
     }
 
     #[test]
+    fn interface_states_round_trip_bitwise() {
+        use crate::material::interface_mc::MohrCoulombParams;
+        use crate::material::InterfaceParams;
+        let params = InterfaceParams::MohrCoulomb(MohrCoulombParams::default());
+        let mut a = InterfaceElements::new(&params, 2, 1.0e5).unwrap();
+        let InterfaceElements::MohrCoulomb(ls) = &mut a else {
+            unreachable!()
+        };
+        for (k, s) in ls.store.committed[4..8].iter_mut().enumerate() {
+            s.tau = [1.0 / 3.0 + k as f64, -2.0e-300];
+            s.slipping = k % 2 == 1;
+        }
+        let bytes = encode_interface(&a, 1).unwrap();
+        let mut b = InterfaceElements::new(&params, 2, 0.0).unwrap();
+        decode_interface(&mut b, 1, &bytes).unwrap();
+        let (InterfaceElements::MohrCoulomb(x), InterfaceElements::MohrCoulomb(y)) = (&a, &b) else {
+            unreachable!()
+        };
+        assert_eq!(x.store.committed[4..8], y.store.committed[4..8]);
+        assert_eq!(y.store.trial[4..8], y.store.committed[4..8]);
+        assert!(y.store.committed[5].slipping && !y.store.committed[4].slipping);
+        // 4 points per element: the 8 states of a hexahedron do not fit
+        assert!(decode_interface(
+            &mut b,
+            0,
+            &postcard::to_allocvec(&x.store.committed[0..8]).unwrap()
+        )
+        .is_err());
+    }
+
+    #[test]
     fn bad_bytes_are_an_error_not_a_panic() {
         let a = gp_block(1);
         let bytes = encode_solid(&a, 0).unwrap();
