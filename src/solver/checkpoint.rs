@@ -33,8 +33,8 @@
 //!   states               u8  [n_elements, w]    committed point states of each element
 //!                                               ([`super::state_codec`]), zero-padded to the
 //!                                               longest (w bytes)
-//!   report               u8  [len]              JSON of the load-step and Newton counters
-//!                                               ([`SolveReport`], timings zeroed)
+//!   report               u8  [len]              JSON of the load-step, Newton and KSP counters
+//!                                               ([`SolveReport`] without timings and residuals)
 //! ```
 //!
 //! Not stored, because [`StaticProblem::begin_stage`] of the next stage recomputes them: the
@@ -165,10 +165,12 @@ pub fn write(
         row[..s.len()].copy_from_slice(s);
     }
     file.write_table("/checkpoint/states", &element_plan, width, &packed)?;
-    // the counters are the same on every rank; rank 0's are stored (timings are per run)
+    // the counters are the same on every rank; rank 0's are stored (timings are per run; the
+    // residual history is not needed and may hold a non-finite value, which JSON cannot)
     let counters = SolveReport {
         assembly_seconds: 0.0,
         solve_seconds: 0.0,
+        residuals: Vec::new(),
         ..report.clone()
     };
     let mut json = serde_json::to_vec(&counters).unwrap_or_default();
