@@ -10,7 +10,7 @@
 //! | [`mesh`] | global mesh, Gmsh reader, validation, generators |
 //! | [`element`] | element kernels (hex8) |
 //! | [`scene`] | the YAML scene: schema, validation, physics terms |
-//! | [`solver`] | integration-point storage, element blocks, rank-local discretization, Newton |
+//! | [`solver`] | integration-point storage, element blocks, rank-local discretization, Newton, stage checkpoints and restart |
 //! | `partition` (crate) | METIS partition, ownership, ghosts, partition files |
 //! | `linalg` | PETSc safe layer (feature `native`) |
 //! | `io` | parallel HDF5 results, XDMF, run summary (feature `native`) |

@@ -46,6 +46,14 @@ enum Command {
         /// Print nothing but errors.
         #[arg(short, long)]
         quiet: bool,
+        /// Restart from a checkpoint (`<out>/checkpoint.h5`, written at the end of every stage)
+        /// of the same scene: the run continues with the stage after the checkpoint's, and
+        /// `results.h5` holds the stages run from there.
+        #[arg(long, value_name = "CHECKPOINT")]
+        restart: Option<PathBuf>,
+        /// Stop after this many completed stages, once their checkpoint is written (testing).
+        #[arg(long, hide = true, value_name = "K")]
+        stop_after_stage: Option<usize>,
     },
     /// Validate a scene (YAML, mesh, cross-references) without solving.
     Check {
@@ -179,6 +187,8 @@ fn main() -> ExitCode {
                 out_dir: Some(out),
                 petsc_options: petsc,
                 verbose: false,
+                restart: None,
+                stop_after_stage: None,
             };
             let s = cfrd::run::bench_solver(world, dofs, &opts)?;
             if mpi::topology::Communicator::rank(world) == 0 {
@@ -212,12 +222,20 @@ fn main() -> ExitCode {
             }
             Ok(())
         }),
-        Command::Run { scene, out, quiet } => with_mpi(|world| {
+        Command::Run {
+            scene,
+            out,
+            quiet,
+            restart,
+            stop_after_stage,
+        } => with_mpi(|world| {
             let opts = cfrd::run::RunOptions {
                 scene,
                 out_dir: out,
                 petsc_options: petsc,
                 verbose: !quiet,
+                restart,
+                stop_after_stage,
             };
             cfrd::run::run(world, &opts)?;
             Ok(())

@@ -7,7 +7,9 @@ use crate::io::hdf5_out::{strain_output_components, OwnedMesh, ResultsFile, Step
 use crate::io::summary::{Phase, PhaseTimer, RunSummary};
 use crate::linalg::petsc::Petsc;
 use crate::parallel::{any_error, broadcast_vec, EXIT_INPUT, EXIT_SOLVER};
+use crate::scene::schema::CheckpointMode;
 use crate::scene::Scene;
+use crate::solver::checkpoint::{self, CHECKPOINT_FILE};
 use crate::solver::discretization::Discretization;
 use crate::solver::statics::{mesh_cells, LocalResults, SolveReport, StaticProblem};
 use mpi::topology::{Communicator, SimpleCommunicator};
@@ -45,6 +47,10 @@ pub struct RunOptions {
     pub petsc_options: Vec<String>,
     /// Print progress (rank 0).
     pub verbose: bool,
+    /// Checkpoint to restart from (`--restart`): the run continues after its last stage.
+    pub restart: Option<PathBuf>,
+    /// Stop after this many completed stages, once their checkpoint is written (for tests).
+    pub stop_after_stage: Option<usize>,
 }
 
 /// Loads a scene (or the embedded default) collectively.
@@ -136,6 +142,24 @@ pub fn run_scene(
 
     let sopts = &scene.file.solver;
     let mut report = SolveReport::default();
+    // a restart continues after the checkpoint's last stage (input error if it does not fit)
+    let mut first_stage = 0;
+    if let Some(path) = &opts.restart {
+        let restored = checkpoint::restore(world, path, scene, &mut problem, &mut report);
+        first_stage =
+            any_error(world, restored).map_err(|m| input(format!("restart from {}: {m}", path.display())))?;
+        say(&format!(
+            "restarted from {} after stage {first_stage} '{}'",
+            path.display(),
+            scene.stages[first_stage - 1].name
+        ));
+    }
+    let checkpoints = match scene.file.output.checkpoint {
+        Some(mode) => mode == CheckpointMode::Stage,
+        None => !scene.file.stages.is_empty(),
+    };
+    let ckpt = out_dir.join(CHECKPOINT_FILE);
+    let mut ckpt_seconds = 0.0;
     timer.start(Phase::Output);
     let h5 = out_dir.join("results.h5");
     let created = ResultsFile::create(world, &h5, &scene.file.name).and_then(|mut f| {
@@ -155,7 +179,7 @@ pub fn run_scene(
     let n_stages = scene.stages.len();
     let has_interfaces = scene.block_interface.iter().any(Option::is_some);
     let mut failure = None;
-    for (k, stage) in scene.stages.iter().enumerate() {
+    for (k, stage) in scene.stages.iter().enumerate().skip(first_stage) {
         say(&format!(
             "stage {}/{n_stages} '{}': {} load step(s)",
             k + 1,
@@ -193,7 +217,20 @@ pub fn run_scene(
             code: EXIT_SOLVER,
             message: format!("writing results: {m}"),
         })?;
+        if checkpoints {
+            let t0 = Instant::now();
+            let written = checkpoint::write(world, &ckpt, scene, &problem, &report);
+            any_error(world, written).map_err(|m| RunFailure {
+                code: EXIT_SOLVER,
+                message: format!("writing the checkpoint {}: {m}", ckpt.display()),
+            })?;
+            ckpt_seconds += t0.elapsed().as_secs_f64();
+        }
         timer.stop();
+        if opts.stop_after_stage == Some(k + 1) {
+            say(&format!("stopped after stage {} (--stop-after-stage)", k + 1));
+            break;
+        }
     }
     timer.add(
         Phase::Assembly,
@@ -264,6 +301,8 @@ pub fn run_scene(
     summary.interface_points = counts.points;
     summary.interface_open = counts.open;
     summary.interface_slipping = counts.slipping;
+    summary.restarted_after_stage = opts.restart.as_ref().map(|_| first_stage as u64);
+    summary.checkpoint_seconds = crate::parallel::max_f64(world, ckpt_seconds);
     summary.gather_peak_memory(world);
     if rank == 0 {
         summary

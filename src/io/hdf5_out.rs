@@ -529,6 +529,39 @@ impl ResultsFile {
         agree(&self.comm, written)
     }
 
+    /// Writes scalar attributes of the group at `group` (created if needed): unsigned integers
+    /// (`u64`) and strings. Used for checkpoint metadata. Collective; every rank passes the same
+    /// values (checked).
+    pub fn write_group_attrs(
+        &mut self,
+        group: &str,
+        numbers: &[(&str, u64)],
+        strings: &[(&str, &str)],
+    ) -> Result<(), IoError> {
+        let all: Vec<String> = numbers
+            .iter()
+            .map(|(k, v)| format!("{k}={v}"))
+            .chain(strings.iter().map(|(k, v)| format!("{k}={v}")))
+            .collect();
+        agree_text(
+            &self.comm,
+            "group attributes",
+            &format!("{group}\n{}", all.join("\n")),
+        )?;
+        let g = self.create_group(group)?;
+        let written = (|| -> hdf5::Result<()> {
+            for &(k, v) in numbers {
+                write_attr(&g, k, v)?;
+            }
+            for &(k, v) in strings {
+                write_attr_str(&g, k, v)?;
+            }
+            Ok(())
+        })()
+        .map_err(|e| IoError::hdf5(format!("writing the attributes of {group}"), e));
+        agree(&self.comm, written)
+    }
+
     /// The XDMF description of what was written so far (for the file name of `path`).
     pub fn xdmf_document(&self) -> XdmfDocument {
         let h5_file = self

@@ -65,9 +65,11 @@
 //! ## Checkpoint data
 //!
 //! Checkpoints use the same writer: [`ResultsFile::write_table`] stores any distributed table
-//! (`n_rows × ncomp` of `f64`, `i64`, ...) in global row order, e.g. integration-point states
-//! with row `8·e + q` for point `q` of element `e`; [`ResultsReader::read_owned`] gives each
-//! rank back the rows it owns under a possibly different rank count.
+//! (`n_rows × ncomp` of `f64`, `i64`, `u8`, ...) in global row order and
+//! [`ResultsFile::write_group_attrs`] its metadata; [`ResultsReader::read_owned`] gives each
+//! rank back the rows it owns under a possibly different rank count. The static solver's
+//! checkpoint (`checkpoint.h5`, a `/checkpoint` group with one row per node or element) is
+//! described in `crate::solver::checkpoint`.
 //!
 //! # Use from the solver
 //!

@@ -215,6 +215,13 @@ pub struct RunSummary {
     /// Of those, points slipping (on the plastic branch in their last update).
     #[serde(default)]
     pub interface_slipping: u64,
+    /// For a run restarted from a checkpoint (`--restart`): the stages completed before the
+    /// restart (the run began with the next one).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub restarted_after_stage: Option<u64>,
+    /// Wall-clock seconds spent writing checkpoints (max over ranks).
+    #[serde(default)]
+    pub checkpoint_seconds: f64,
     /// Peak resident memory (bytes), maximum over ranks.
     pub peak_memory_bytes: u64,
     /// Peak resident memory (bytes) of each rank.
@@ -340,6 +347,8 @@ mod tests {
             interface_points: 16,
             interface_open: 2,
             interface_slipping: 3,
+            restarted_after_stage: Some(2),
+            checkpoint_seconds: 0.25,
             peak_memory_bytes: 2048,
             peak_memory_bytes_per_rank: vec![1024, 2048],
         };

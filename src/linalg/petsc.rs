@@ -494,6 +494,8 @@ pub enum SnesOutcome {
 /// default), driven by a [`SnesProblem`]; `-snes_*` options override the defaults.
 pub struct Snes {
     raw: p::SNES,
+    comm: mpi::ffi::MPI_Comm,
+    settings: (u32, f64, u32, bool),
 }
 
 impl Snes {
@@ -508,7 +510,35 @@ impl Snes {
     ) -> Result<Snes, PetscError> {
         let mut raw: p::SNES = null_mut();
         call!(SNESCreate(petsc.comm, &mut raw))?;
-        let s = Snes { raw };
+        let s = Snes {
+            raw,
+            comm: petsc.comm,
+            settings: (max_it, rtol, ksp_max_it, symmetric),
+        };
+        s.configure()?;
+        Ok(s)
+    }
+
+    /// Replaces the solver by a new one with the same settings: the next solve builds the
+    /// preconditioner afresh (smoothed-aggregation GAMG otherwise keeps state from its earlier
+    /// set-ups that `KSPReset` does not clear). Called at the start of every stage, so a stage's
+    /// solves do not depend on the earlier stages and a restart from a checkpoint repeats them
+    /// bitwise.
+    pub fn reset(&mut self) -> Result<(), PetscError> {
+        let mut raw: p::SNES = null_mut();
+        call!(SNESCreate(self.comm, &mut raw))?;
+        // SAFETY: created by SNESCreate, destroyed once; replaced by the new solver below.
+        unsafe {
+            p::SNESDestroy(&mut self.raw);
+        }
+        self.raw = raw;
+        self.configure()
+    }
+
+    /// cfrd's settings on a new SNES.
+    fn configure(&self) -> Result<(), PetscError> {
+        let s = self;
+        let (max_it, rtol, ksp_max_it, symmetric) = self.settings;
         call!(SNESSetType(s.raw, p::SNESNEWTONLS.as_ptr() as *const c_char))?;
         // the problem's convergence test decides; only the iteration limit is SNES's own
         call!(SNESSetTolerances(s.raw, 0.0, 0.0, 0.0, max_it as i32, -1))?;
@@ -525,8 +555,7 @@ impl Snes {
         call!(SNESGetKSP(s.raw, &mut ksp))?;
         configure_ksp(ksp, rtol, ksp_max_it, symmetric)?;
         // options (scene and command line) are applied here, so a bad one is an input error
-        call!(SNESSetFromOptions(s.raw))?;
-        Ok(s)
+        call!(SNESSetFromOptions(s.raw))
     }
 
     /// Solves F(x) = 0 from the initial guess in `x`, with `r` as the residual work vector.

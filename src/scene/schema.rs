@@ -293,6 +293,21 @@ pub struct OutputSpec {
     /// output directory at the end of the run; see [`crate::profiles`]. Absent: not written.
     #[serde(default)]
     pub profiles: Option<crate::profiles::ProfilesSpec>,
+    /// When to write `checkpoint.h5` into the output directory for `cfrd run --restart`:
+    /// `stage` (at the end of every completed stage) or `none`. Default: `stage` for scenes
+    /// with `stages`, `none` otherwise.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub checkpoint: Option<CheckpointMode>,
+}
+
+/// When a run writes its checkpoint.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum CheckpointMode {
+    /// At the end of every completed stage (replacing the previous checkpoint).
+    Stage,
+    /// Never.
+    None,
 }
 
 /// Zero of the reported displacement of nodes placed by a construction stage.
@@ -319,6 +334,7 @@ impl Default for OutputSpec {
             dir: out_dir(),
             placed_nodes: PlacedNodes::default(),
             profiles: None,
+            checkpoint: None,
         }
     }
 }

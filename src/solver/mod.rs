@@ -1,10 +1,13 @@
-//! Solvers: integration-point storage, solid blocks, the rank-local discretization and the
-//! static Newton solver.
+//! Solvers: integration-point storage (and its checkpoint encoding), solid blocks, the
+//! rank-local discretization, the static Newton solver and its checkpoints.
 
 pub mod interface;
 pub mod qp_store;
 pub mod solid;
+pub mod state_codec;
 
+#[cfg(feature = "native")]
+pub mod checkpoint;
 #[cfg(feature = "native")]
 pub mod discretization;
 #[cfg(feature = "native")]

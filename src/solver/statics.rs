@@ -7,9 +7,11 @@
 //! increment (spec §8.1); the states are committed only at convergence. Dirichlet DOFs are kept
 //! in the system (block size 3 for algebraic multigrid) with unit rows and columns.
 
+use super::checkpoint::ProblemState;
 use super::discretization::Discretization;
 use super::interface::{InterfaceElementOutput, InterfaceElements};
 use super::solid::{SolidBlock, Vector24};
+use super::state_codec;
 use crate::element::hex8::{face_pressure_load, gravity_load, Hex8Geometry};
 use crate::element::interface8::Interface8Geometry;
 use crate::element::interface_frame::FrameAxes;
@@ -105,7 +107,7 @@ impl SolveError {
 }
 
 /// Counters and timings of a solve.
-#[derive(Debug, Clone, Default, serde::Serialize)]
+#[derive(Debug, Clone, Default, serde::Serialize, serde::Deserialize)]
 pub struct SolveReport {
     /// Newton iterations.
     pub newton_iterations: u32,
@@ -384,6 +386,93 @@ impl<'a> StaticProblem<'a> {
         &self.disc
     }
 
+    /// The state a checkpoint stores at the end of the current stage (after
+    /// [`StaticProblem::end_stage`]): everything [`StaticProblem::begin_stage`] of the next stage
+    /// and the solve need, in this rank's owned order ([`super::checkpoint`]).
+    pub(crate) fn save_state(&self) -> Result<ProblemState, SolveError> {
+        let mut element_states = Vec::with_capacity(self.elem_block.len());
+        for (i, &(b, be)) in self.elem_block.iter().enumerate() {
+            let encoded = match &self.blocks[b] {
+                BlockStates::Solid(block) => state_codec::encode_solid(block, be),
+                BlockStates::Interface(block) => state_codec::encode_interface(block, be),
+            };
+            element_states.push(encoded.map_err(|reason| SolveError::Material {
+                element: self.scene.mesh.elements[self.disc.owned_elements[i] as usize].id,
+                reason,
+            })?);
+        }
+        Ok(ProblemState {
+            stages_done: self.stage + 1,
+            active_block: self.active_block.clone(),
+            node_active: self.node_active.clone(),
+            u: self.u_committed.read(|s| s.to_vec())?,
+            f_prev: self.f_prev.read(|s| s.to_vec())?,
+            node_offset: self.node_offset.clone(),
+            elem_ref: self
+                .elem_ref
+                .iter()
+                .map(|v| std::array::from_fn(|k| v[k]))
+                .collect(),
+            element_states,
+        })
+    }
+
+    /// Restores a state saved by [`StaticProblem::save_state`] (possibly under another
+    /// partition: the caller maps it to this rank's owned order). The next call is
+    /// [`StaticProblem::begin_stage`] of stage `state.stages_done`. Local; fails on wrong lengths
+    /// or states that do not decode for the block's model (naming the element).
+    pub(crate) fn restore_state(&mut self, state: &ProblemState) -> Result<(), String> {
+        let (nn, ne) = (self.disc.owned_nodes.len(), self.disc.owned_elements.len());
+        let lens = [
+            ("active blocks", state.active_block.len(), self.active_block.len()),
+            ("node flags", state.node_active.len(), self.node_active.len()),
+            ("displacements", state.u.len(), 3 * nn),
+            ("previous loads", state.f_prev.len(), 3 * nn),
+            ("node offsets", state.node_offset.len(), nn),
+            ("element references", state.elem_ref.len(), ne),
+            ("element states", state.element_states.len(), ne),
+        ];
+        if let Some((what, got, want)) = lens.iter().find(|(_, got, want)| got != want) {
+            return Err(format!("{what}: {got} values, this problem has {want}"));
+        }
+        if state.stages_done == 0 || state.stages_done > self.scene.stages.len() {
+            return Err(format!(
+                "{} completed stage(s), the scene has {}",
+                state.stages_done,
+                self.scene.stages.len()
+            ));
+        }
+        for (i, &(b, be)) in self.elem_block.iter().enumerate() {
+            let bytes = &state.element_states[i];
+            let decoded = match &mut self.blocks[b] {
+                BlockStates::Solid(block) => state_codec::decode_solid(block, be, bytes),
+                BlockStates::Interface(block) => state_codec::decode_interface(block, be, bytes),
+            };
+            decoded.map_err(|m| {
+                format!(
+                    "element {}: {m}",
+                    self.scene.mesh.elements[self.disc.owned_elements[i] as usize].id
+                )
+            })?;
+        }
+        self.stage = state.stages_done - 1;
+        self.active_block.clone_from(&state.active_block);
+        self.node_active.clone_from(&state.node_active);
+        self.node_offset.clone_from(&state.node_offset);
+        self.elem_ref = state
+            .elem_ref
+            .iter()
+            .map(|r| Vector24::from_column_slice(r))
+            .collect();
+        let petsc = |e: crate::linalg::petsc::PetscError| e.to_string();
+        self.u.write(|s| s.copy_from_slice(&state.u)).map_err(petsc)?;
+        self.u_committed.copy_from(&self.u).map_err(petsc)?;
+        self.f_prev
+            .write(|s| s.copy_from_slice(&state.f_prev))
+            .map_err(petsc)?;
+        Ok(())
+    }
+
     /// Starts stage `k` of the scene: places its blocks (strain-free: their states start from
     /// the initial state and their strains count from the current displacement) and fixes, at
     /// their current displacement, the nodes that no placed element touches yet.
@@ -431,6 +520,12 @@ impl<'a> StaticProblem<'a> {
         fixed.dedup_by_key(|f| f.0);
         self.fixed_start = fixed.iter().map(|&(d, _)| u_own[d as usize - lo]).collect();
         self.fixed = fixed;
+        // a fresh preconditioner per stage: the stage's solves do not depend on earlier
+        // stages, so a restart from the checkpoint of the previous stage repeats them exactly
+        self.snes
+            .as_mut()
+            .expect("the nonlinear solver is in place between steps")
+            .reset()?;
         Ok(())
     }
 

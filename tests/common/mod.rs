@@ -41,6 +41,60 @@ pub fn cfrd_mpi(np: usize, dir: &Path, args: &[&str]) -> Output {
     cmd.output().expect("mpirun starts")
 }
 
+/// Starts `cfrd ARGS` under `mpirun -n np` in `dir` without waiting (output discarded).
+pub fn cfrd_mpi_spawn(np: usize, dir: &Path, args: &[&str]) -> std::process::Child {
+    let mut cmd = mpi_command(np);
+    cmd.arg(cfrd_bin())
+        .args(args)
+        .current_dir(dir)
+        .stdout(Stdio::null())
+        .stderr(Stdio::null());
+    cmd.spawn().expect("mpirun starts")
+}
+
+/// The process `pid` and all its descendants (from `/proc`), parents first.
+pub fn process_tree(pid: u32) -> Vec<u32> {
+    let mut parent_of = Vec::new();
+    for entry in std::fs::read_dir("/proc").into_iter().flatten().flatten() {
+        let Ok(p) = entry.file_name().to_string_lossy().parse::<u32>() else {
+            continue;
+        };
+        let Ok(stat) = std::fs::read_to_string(entry.path().join("stat")) else {
+            continue;
+        };
+        // "pid (comm) state ppid ...": the command may hold spaces, so split after ')'
+        if let Some(ppid) = stat
+            .rsplit_once(')')
+            .and_then(|(_, rest)| rest.split_whitespace().nth(1))
+            .and_then(|v| v.parse::<u32>().ok())
+        {
+            parent_of.push((p, ppid));
+        }
+    }
+    let mut tree = vec![pid];
+    let mut i = 0;
+    while i < tree.len() {
+        let parent = tree[i];
+        tree.extend(parent_of.iter().filter(|&&(_, pp)| pp == parent).map(|&(p, _)| p));
+        i += 1;
+    }
+    tree
+}
+
+/// Sends SIGKILL to `child` and all its descendants (the MPI ranks run in their own process
+/// groups, so killing mpirun's group would not reach them), then reaps it.
+pub fn kill_tree(child: &mut std::process::Child) -> std::process::ExitStatus {
+    let tree = process_tree(child.id());
+    // the ranks first, so that none is re-parented before it is found
+    for pid in tree.iter().rev() {
+        let _ = Command::new("kill")
+            .args(["-KILL", &pid.to_string()])
+            .stderr(Stdio::null())
+            .status();
+    }
+    child.wait().expect("wait for mpirun")
+}
+
 /// Runs `cfrd ARGS` as a plain process (an MPI singleton) in `dir`.
 pub fn cfrd(dir: &Path, args: &[&str]) -> Output {
     Command::new(cfrd_bin())

@@ -1,0 +1,330 @@
+//! Checkpoints of staged static runs and the exact restart from them (issue 4).
+//!
+//! At the end of every completed stage (scene option `output.checkpoint: stage`, the default for
+//! scenes with `stages`) `cfrd run` writes `<out>/checkpoint.h5` with the whole state of the
+//! static problem; `cfrd run SCENE --restart <out>/checkpoint.h5` loads it and continues with
+//! the next stage. A restart at the same rank count gives results bitwise equal to the
+//! uninterrupted run's: every value is stored exactly (IEEE bits) and the solve that follows
+//! starts from the same state. The layout does not depend on the rank count (every table is in
+//! global input order), so a checkpoint can also be restarted on another number of ranks; the
+//! results then agree to the solver tolerances (the parallel sums are ordered differently).
+//!
+//! # Writing without a corrupt file
+//!
+//! The file is written under a temporary name in the output directory
+//! (`.checkpoint.h5.partial-<pid>`) and renamed over `checkpoint.h5` only after HDF5 closed it
+//! ([`ResultsFile::close`]). A run killed while writing leaves the previous checkpoint intact
+//! (and a stale `.partial-<pid>` file that may be deleted).
+//!
+//! # Layout (format `cfrd-results` version 1 with a `/checkpoint` group, no mesh or steps)
+//!
+//! ```text
+//! /checkpoint            attributes: checkpoint_version = 1 (u64), scene_hash (FNV-1a of the
+//!                        scene text), mesh_hash (FNV-1a of coordinates, connectivity, blocks),
+//!                        n_nodes, n_elements, n_blocks, stages_done (completed stages, ≥ 1),
+//!                        last_stage (its name), n_ranks (informational), state_encoding = "postcard"
+//!   u                    f64 [n_nodes, 3]       displacement (m) at the end of the last stage
+//!   f_prev               f64 [n_nodes, 3]       external force of the last stage (N), f_prev
+//!   node_offset          f64 [n_nodes, 3]       zero of each node's reported displacement (m)
+//!   node_active          i64 [n_nodes]          1 if a placed element touches the node
+//!   active_block         i64 [n_blocks]         1 if the block is placed
+//!   elem_ref             f64 [n_elements, 24]   displacement of each element's nodes at placement
+//!   state_bytes          u64 [n_elements]       length of each element's encoded states
+//!   states               u8  [n_elements, w]    committed point states of each element
+//!                                               ([`super::state_codec`]), zero-padded to the
+//!                                               longest (w bytes)
+//!   report               u8  [len]              JSON of the load-step, Newton and KSP counters
+//!                                               ([`SolveReport`] without timings and residuals)
+//! ```
+//!
+//! Not stored, because [`StaticProblem::begin_stage`] of the next stage recomputes them: the
+//! fixed DOFs and their start values, and which nodes were placed before the stage.
+
+use super::discretization::Discretization;
+use super::statics::{SolveReport, StaticProblem};
+use crate::io::error::agree;
+use crate::io::{IoError, Redistribution, ResultsFile, ResultsReader};
+use crate::mesh::Mesh;
+use crate::parallel::broadcast_vec;
+use crate::scene::validate::fnv1a;
+use crate::scene::Scene;
+use mpi::topology::SimpleCommunicator;
+use mpi::traits::{Communicator, CommunicatorCollectives};
+use std::path::Path;
+
+/// Version of the `/checkpoint` layout; a checkpoint of another version is refused.
+pub const CHECKPOINT_VERSION: u64 = 1;
+
+/// File name of the checkpoint in the output directory.
+pub const CHECKPOINT_FILE: &str = "checkpoint.h5";
+
+/// The state of the static problem on one rank at the end of a stage, in this rank's owned
+/// order (nodes of `Discretization::owned_nodes`, elements of `owned_elements`).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct ProblemState {
+    /// Number of completed stages (the next stage has this index).
+    pub stages_done: usize,
+    /// Whether each block is placed (all blocks).
+    pub active_block: Vec<bool>,
+    /// Whether each node belongs to a placed element (all nodes).
+    pub node_active: Vec<bool>,
+    /// Displacement, 3 values per owned node (m).
+    pub u: Vec<f64>,
+    /// External force of the last stage, 3 values per owned node (N).
+    pub f_prev: Vec<f64>,
+    /// Zero of the reported displacement of each owned node (m).
+    pub node_offset: Vec<[f64; 3]>,
+    /// Displacement of each owned element's nodes at its placement (m).
+    pub elem_ref: Vec<[f64; 24]>,
+    /// Encoded committed point states of each owned element ([`super::state_codec`]).
+    pub element_states: Vec<Vec<u8>>,
+}
+
+/// FNV-1a hash (hex) of the mesh: coordinates (bits), connectivity and block of every element.
+/// A checkpoint is refused for a mesh with another hash.
+pub fn mesh_hash(mesh: &Mesh) -> String {
+    let mut bytes = Vec::with_capacity(24 * mesh.num_nodes() + 40 * mesh.elements.len());
+    for c in &mesh.coords {
+        for x in c {
+            bytes.extend_from_slice(&x.to_bits().to_le_bytes());
+        }
+    }
+    for e in &mesh.elements {
+        for n in &e.nodes {
+            bytes.extend_from_slice(&n.to_le_bytes());
+        }
+        bytes.extend_from_slice(&e.block.to_le_bytes());
+    }
+    fnv1a(&bytes)
+}
+
+fn flags(v: impl Iterator<Item = bool>) -> Vec<i64> {
+    v.map(i64::from).collect()
+}
+
+/// Writes a table that every rank holds whole (`values` the same everywhere): each rank passes
+/// its block of rows. Collective.
+fn write_replicated<T: crate::io::hdf5_out::TableValue>(
+    file: &mut ResultsFile,
+    dataset: &str,
+    values: &[T],
+) -> Result<(), IoError> {
+    let n = values.len().max(1) as u64;
+    let padded: Vec<T> = if values.is_empty() {
+        vec![T::default()]
+    } else {
+        values.to_vec()
+    };
+    let rows =
+        crate::io::BlockDistribution::new(n, file.comm().size() as usize).range(file.comm().rank() as usize);
+    let block = &padded[rows.start as usize..rows.end as usize];
+    file.write_table_block(dataset, n, 1, block)
+}
+
+/// Writes the checkpoint of `problem` (at the end of a stage) to `path`, atomically (temporary
+/// file renamed on success). Collective.
+pub fn write(
+    world: &SimpleCommunicator,
+    path: &Path,
+    scene: &Scene,
+    problem: &StaticProblem,
+    report: &SolveReport,
+) -> Result<(), IoError> {
+    let saved = problem
+        .save_state()
+        .map_err(|e| IoError::Usage(format!("saving the state: {e}")));
+    let state = agree(world, saved)?;
+    let disc = problem.discretization();
+    let mesh = &scene.mesh;
+    let (n_nodes, n_elements) = (mesh.num_nodes() as u64, mesh.elements.len() as u64);
+    let mut file = ResultsFile::create(world, path, &scene.file.name)?;
+    let comm = file.comm().duplicate();
+    let node_plan = Redistribution::new(&comm, "nodes", n_nodes, &disc.owned_nodes)?;
+    let element_plan = Redistribution::new(&comm, "elements", n_elements, &disc.owned_elements)?;
+    file.write_table("/checkpoint/u", &node_plan, 3, &state.u)?;
+    file.write_table("/checkpoint/f_prev", &node_plan, 3, &state.f_prev)?;
+    let offsets: Vec<f64> = state.node_offset.iter().flatten().copied().collect();
+    file.write_table("/checkpoint/node_offset", &node_plan, 3, &offsets)?;
+    let active = flags(disc.owned_nodes.iter().map(|&n| state.node_active[n as usize]));
+    file.write_table("/checkpoint/node_active", &node_plan, 1, &active)?;
+    write_replicated(
+        &mut file,
+        "/checkpoint/active_block",
+        &flags(state.active_block.iter().copied()),
+    )?;
+    let refs: Vec<f64> = state.elem_ref.iter().flatten().copied().collect();
+    file.write_table("/checkpoint/elem_ref", &element_plan, 24, &refs)?;
+    let lens: Vec<u64> = state.element_states.iter().map(|s| s.len() as u64).collect();
+    file.write_table("/checkpoint/state_bytes", &element_plan, 1, &lens)?;
+    let local_w = lens.iter().copied().max().unwrap_or(0);
+    let mut width = 0u64;
+    comm.all_reduce_into(&local_w, &mut width, mpi::collective::SystemOperation::max());
+    let width = width.max(1) as usize;
+    let mut packed = vec![0u8; width * state.element_states.len()];
+    for (row, s) in packed.chunks_mut(width).zip(&state.element_states) {
+        row[..s.len()].copy_from_slice(s);
+    }
+    file.write_table("/checkpoint/states", &element_plan, width, &packed)?;
+    // the counters are the same on every rank; rank 0's are stored (timings are per run; the
+    // residual history is not needed and may hold a non-finite value, which JSON cannot)
+    let counters = SolveReport {
+        assembly_seconds: 0.0,
+        solve_seconds: 0.0,
+        residuals: Vec::new(),
+        ..report.clone()
+    };
+    let mut json = serde_json::to_vec(&counters).unwrap_or_default();
+    broadcast_vec(&comm, 0, &mut json);
+    write_replicated(&mut file, "/checkpoint/report", &json)?;
+    let stage_name = scene.stages[state.stages_done - 1].name.as_str();
+    file.write_group_attrs(
+        "/checkpoint",
+        &[
+            ("checkpoint_version", CHECKPOINT_VERSION),
+            ("n_nodes", n_nodes),
+            ("n_elements", n_elements),
+            ("n_blocks", state.active_block.len() as u64),
+            ("stages_done", state.stages_done as u64),
+            ("n_ranks", comm.size() as u64),
+        ],
+        &[
+            ("scene_hash", &scene.hash),
+            ("mesh_hash", &mesh_hash(mesh)),
+            ("last_stage", stage_name),
+            ("state_encoding", "postcard"),
+        ],
+    )?;
+    file.close()
+}
+
+/// Reads a checkpoint for `scene` and this rank's part `disc`. Refuses a checkpoint of another
+/// layout version, scene or mesh. Collective.
+pub fn read(
+    world: &SimpleCommunicator,
+    path: &Path,
+    scene: &Scene,
+    disc: &Discretization,
+) -> Result<(ProblemState, SolveReport), IoError> {
+    let reader = ResultsReader::open(world, path)?;
+    let comm = reader.comm().duplicate();
+    let mesh = &scene.mesh;
+    let (n_nodes, n_elements) = (mesh.num_nodes() as u64, mesh.elements.len() as u64);
+    let checked = (|| {
+        let layout = |m: String| IoError::Layout(format!("{}: {m}", path.display()));
+        let version: u64 = reader
+            .attr("/checkpoint", "checkpoint_version")
+            .map_err(|_| layout("not a cfrd checkpoint (no /checkpoint group)".into()))?;
+        if version != CHECKPOINT_VERSION {
+            return Err(layout(format!(
+                "checkpoint version {version}, this cfrd reads version {CHECKPOINT_VERSION}"
+            )));
+        }
+        let hash = reader.attr_string("/checkpoint", "scene_hash")?;
+        if hash != scene.hash {
+            return Err(layout(format!(
+                "written for another scene (scene hash {hash}, this scene's is {}); a \
+                 checkpoint restarts only the scene file it was written by, unchanged",
+                scene.hash
+            )));
+        }
+        let m_hash = reader.attr_string("/checkpoint", "mesh_hash")?;
+        let (nn, ne): (u64, u64) = (
+            reader.attr("/checkpoint", "n_nodes")?,
+            reader.attr("/checkpoint", "n_elements")?,
+        );
+        if m_hash != mesh_hash(mesh) || nn != n_nodes || ne != n_elements {
+            return Err(layout(format!(
+                "written for another mesh ({nn} nodes, {ne} elements, mesh hash {m_hash}; \
+                 this mesh: {n_nodes} nodes, {n_elements} elements, mesh hash {})",
+                mesh_hash(mesh)
+            )));
+        }
+        let done: u64 = reader.attr("/checkpoint", "stages_done")?;
+        if done == 0 || done >= scene.stages.len() as u64 {
+            return Err(layout(format!(
+                "{done} of the scene's {} stage(s) completed: nothing to restart",
+                scene.stages.len()
+            )));
+        }
+        Ok(done as usize)
+    })();
+    let stages_done = agree(&comm, checked)?;
+    let node_plan = Redistribution::new(&comm, "nodes", n_nodes, &disc.owned_nodes)?;
+    let element_plan = Redistribution::new(&comm, "elements", n_elements, &disc.owned_elements)?;
+    let (nn, ne) = (disc.owned_nodes.len(), disc.owned_elements.len());
+    let sized = |name: &str, v: Vec<f64>, want: usize| -> Result<Vec<f64>, IoError> {
+        if v.len() == want {
+            Ok(v)
+        } else {
+            Err(IoError::Layout(format!(
+                "{}: /checkpoint/{name} has the wrong number of components",
+                path.display()
+            )))
+        }
+    };
+    let u = reader.read_owned::<f64>("/checkpoint/u", &node_plan)?;
+    let f_prev = reader.read_owned::<f64>("/checkpoint/f_prev", &node_plan)?;
+    let offsets = reader.read_owned::<f64>("/checkpoint/node_offset", &node_plan)?;
+    let refs = reader.read_owned::<f64>("/checkpoint/elem_ref", &element_plan)?;
+    let lens = reader.read_owned::<u64>("/checkpoint/state_bytes", &element_plan)?;
+    let packed = reader.read_owned::<u8>("/checkpoint/states", &element_plan)?;
+    let (node_active, _) = reader.read_all::<i64>("/checkpoint/node_active")?;
+    let (active_block, _) = reader.read_all::<i64>("/checkpoint/active_block")?;
+    let (json, _) = reader.read_all::<u8>("/checkpoint/report")?;
+    let assembled = (|| {
+        let u = sized("u", u, 3 * nn)?;
+        let f_prev = sized("f_prev", f_prev, 3 * nn)?;
+        let offsets = sized("node_offset", offsets, 3 * nn)?;
+        let refs = sized("elem_ref", refs, 24 * ne)?;
+        let bad = |m: &str| IoError::Layout(format!("{}: {m}", path.display()));
+        if lens.len() != ne || node_active.len() as u64 != n_nodes {
+            return Err(bad("state lengths or node flags do not fit the mesh"));
+        }
+        let width = packed.len().checked_div(ne).unwrap_or(0);
+        if packed.len() != width * ne || lens.iter().any(|&l| l as usize > width) {
+            return Err(bad("the stored states do not fit their lengths"));
+        }
+        if active_block.len() < scene.mesh.blocks.len() {
+            return Err(bad("fewer block flags than blocks"));
+        }
+        let report: SolveReport = serde_json::from_slice(&json)
+            .map_err(|e| bad(&format!("the stored solver counters do not parse ({e})")))?;
+        let state = ProblemState {
+            stages_done,
+            active_block: active_block[..scene.mesh.blocks.len()]
+                .iter()
+                .map(|&f| f != 0)
+                .collect(),
+            node_active: node_active.iter().map(|&f| f != 0).collect(),
+            u,
+            f_prev,
+            node_offset: offsets.chunks(3).map(|c| [c[0], c[1], c[2]]).collect(),
+            elem_ref: refs.chunks(24).map(|c| std::array::from_fn(|k| c[k])).collect(),
+            element_states: lens
+                .iter()
+                .enumerate()
+                .map(|(i, &l)| packed[i * width..i * width + l as usize].to_vec())
+                .collect(),
+        };
+        Ok((state, report))
+    })();
+    agree(&comm, assembled)
+}
+
+/// Reads a checkpoint and restores `problem` and the counters in `report` from it; returns the
+/// number of completed stages (the index of the stage to run next). Collective.
+pub fn restore(
+    world: &SimpleCommunicator,
+    path: &Path,
+    scene: &Scene,
+    problem: &mut StaticProblem,
+    report: &mut SolveReport,
+) -> Result<usize, IoError> {
+    let (state, counters) = read(world, path, scene, problem.discretization())?;
+    let restored = problem
+        .restore_state(&state)
+        .map_err(|m| IoError::Layout(format!("{}: {m}", path.display())));
+    agree(world, restored)?;
+    *report = counters;
+    Ok(state.stages_done)
+}
