@@ -6,7 +6,7 @@
 //! uniform σ₀ was unbalanced on the free faces: the faces expanded to shed it, the points at the
 //! lift edges dropped to the uniaxial state p ≈ p_min/3, η = 3 (the η cap) or crossed the tension
 //! cut-off, and Newton chattered. Measured on this scene (2 ranks): before, the load step failed
-//! after 8 cut-backs ("Newton did not converge in 25 iterations (relative residual 8.993e-1)",
+//! after 8 cut-backs ("Newton did not converge in 25 iterations (relative residual 8.974e-1)",
 //! exit code 3); after, it converges in 1 Newton iteration with σ = −p_min·I and u = 0 (~7 s).
 
 mod common;
