@@ -72,7 +72,7 @@ impl SolidBlock {
             SolidParams::RockfillGp(p) => {
                 let model = RockfillGp::new(p.clone()).map_err(|e| MaterialError::new(e.to_string()))?;
                 // a point placed without stress starts at the pressure floor p_min (spec §8.6 item 1)
-                let init = model.init_state(&Stress6::isotropic(-p.pmin))?;
+                let init = model.init_state(&Stress6::isotropic(-placement_pressure(p)))?;
                 SolidBlock::RockfillGp(ModelStates {
                     model,
                     store: QpStore::new(n, init),
@@ -91,6 +91,22 @@ impl SolidBlock {
         want_k: bool,
     ) -> Result<ElementResponse, MaterialError> {
         with_states!(self, ms => evaluate_element(ms, e, geo, d_u, want_k))
+    }
+
+    /// Stress σ₀ (Pa) of a point when its element is placed: zero for the elastic model, the
+    /// pressure floor p_min·I (compression) for the rockfill (spec §8.6 item 1).
+    pub fn placement_stress(&self) -> Stress6 {
+        match self {
+            SolidBlock::Elastic(_) => Stress6::default(),
+            SolidBlock::RockfillGp(ms) => Stress6::isotropic(-placement_pressure(ms.model.params())),
+        }
+    }
+
+    /// Nodal forces f₀ = ∫ Bᵀσ₀ dV (N) of the placement stress σ₀ of an element. The static
+    /// solver adds them to the external force of every placed element, so that a lift is placed
+    /// in equilibrium at σ₀ (see [`crate::solver::statics`]).
+    pub fn placement_force(&self, geo: &Hex8Geometry) -> Vector24 {
+        geo.internal_force(&[self.placement_stress(); HEX_GAUSS_POINTS])
     }
 
     /// Whether the model's tangent is symmetric (CG needs it; otherwise GMRES is used).
@@ -112,6 +128,11 @@ impl SolidBlock {
     pub fn revert(&mut self) {
         with_states!(self, ms => ms.store.revert())
     }
+}
+
+/// Isotropic compression (Pa) of a freshly placed rockfill point: p_min (spec §8.6 item 1).
+fn placement_pressure(p: &crate::material::rockfill_gp::RockfillGpParams) -> f64 {
+    p.pmin
 }
 
 fn evaluate_element<M: SolidModel>(

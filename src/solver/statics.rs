@@ -617,6 +617,44 @@ impl<'a> StaticProblem<'a> {
         Ok(())
     }
 
+    /// Adds to `f` the forces f₀ = ∫ Bᵀσ₀ dV of the placement stress σ₀ of every placed solid
+    /// element (spec §8.6 item 1: a rockfill point is placed at p_min·I, not at zero stress).
+    ///
+    /// σ₀ is uniform, so f₀ vanishes inside a lift and is a pressure p_min on its free faces.
+    /// Without f₀ that pressure is unbalanced: the faces of every new lift expand to shed it,
+    /// the points at the crest edges drop to p ≈ p_min/3, next to the tension cut-off
+    /// p_t = 0.2·p_min, and Newton chatters as they cross it and are reset to p_min·I.
+    /// With f₀ a lift is in equilibrium at σ₀ before its own weight acts, and the stress change
+    /// Δσ = σ − σ₀ balances the real loads alone.
+    fn add_placement_force(&self, f: &mut Vector) -> Result<(), SolveError> {
+        let mesh = &self.scene.mesh;
+        let mut f0 = f.duplicate()?;
+        f0.set_all(0.0)?;
+        for (i, &e) in self.disc.owned_elements.iter().enumerate() {
+            let (b, _) = self.elem_block[i];
+            let BlockStates::Solid(block) = &self.blocks[b] else {
+                continue;
+            };
+            if !self.active_block[b] {
+                continue;
+            }
+            let e = e as usize;
+            let geo = Hex8Geometry::new(&mesh.element_coords(e)).map_err(|_| SolveError::Geometry {
+                element: mesh.elements[e].id,
+            })?;
+            let rows: Vec<i32> = mesh.elements[e]
+                .nodes
+                .iter()
+                .flat_map(|&n| (0..3).map(move |c| (n, c)))
+                .map(|(n, c)| self.disc.dof(n, c))
+                .collect();
+            f0.set_values(&rows, block.placement_force(&geo).as_slice(), true)?;
+        }
+        f0.assemble()?;
+        f.axpy(1.0, &f0)?;
+        Ok(())
+    }
+
     /// Updates the trial states for the current `u` and assembles f_int and (optionally) K.
     fn assemble(&mut self, f_int: &mut Vector, want_k: bool) -> Result<(), SolveError> {
         let mesh = &self.scene.mesh;
@@ -778,6 +816,7 @@ impl<'a> StaticProblem<'a> {
     fn newton(&mut self, lambda: f64, report: &mut SolveReport) -> Result<(), SolveError> {
         let mut f_ext = self.u.duplicate()?;
         self.external_force(lambda, &mut f_ext)?;
+        self.add_placement_force(&mut f_ext)?;
         let lo = self.disc.dof_lo;
         let targets: Vec<(usize, f64)> = self
             .fixed
@@ -886,6 +925,7 @@ impl<'a> StaticProblem<'a> {
         self.assemble(&mut f_int, false)?;
         let mut f_ext = self.u.duplicate()?;
         self.external_force(1.0, &mut f_ext)?;
+        self.add_placement_force(&mut f_ext)?;
         let mut reac = f_int;
         reac.axpy(-1.0, &f_ext)?;
         let reac_all: Vec<f64> = reac.read(|s| s.to_vec())?;
