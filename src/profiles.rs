@@ -12,7 +12,7 @@
 //! | σ_n–τ path and shear displacement vs stress ratio of each probe interface element through the stages | 10 | `fig10_probe_NAME.csv/.png` |
 //! | interface jumps, tractions and opening vs elevation after impoundment | 11 | `fig11_interface.csv/.png` |
 //!
-//! Conventions (documented choices, [INF]):
+//! Conventions (documented choices, \[INF\]):
 //! * **Slab and interface elements** are the elements of the blocks whose names start with
 //!   [`ProfilesSpec::slab_prefix`] (solid) and [`ProfilesSpec::interface_prefix`] (interface).
 //! * **Central section**: the plane y = [`ProfilesSpec::section_y`], by default the middle of the
