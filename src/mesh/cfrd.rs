@@ -210,19 +210,11 @@ fn invalid(field: &str, reason: String) -> MeshError {
 }
 
 fn positive(field: &str, v: f64) -> Result<(), MeshError> {
-    if v.is_finite() && v > 0.0 {
-        Ok(())
-    } else {
-        Err(invalid(field, format!("must be a positive number, got {v}")))
-    }
+    super::generate::positive(&format!("mesh.cfrd.{field}"), v)
 }
 
 fn non_negative(field: &str, v: f64) -> Result<(), MeshError> {
-    if v.is_finite() && v >= 0.0 {
-        Ok(())
-    } else {
-        Err(invalid(field, format!("must be a non-negative number, got {v}")))
-    }
+    super::generate::non_negative(&format!("mesh.cfrd.{field}"), v)
 }
 
 /// Geometry derived from a checked spec.

@@ -179,7 +179,8 @@ fn invalid(field: &str, reason: String) -> MeshError {
     }
 }
 
-fn positive(field: &str, v: f64) -> Result<(), MeshError> {
+/// `v` must be finite and > 0; the error names `field` (a YAML path).
+pub(crate) fn positive(field: &str, v: f64) -> Result<(), MeshError> {
     if v.is_finite() && v > 0.0 {
         Ok(())
     } else {
@@ -187,7 +188,8 @@ fn positive(field: &str, v: f64) -> Result<(), MeshError> {
     }
 }
 
-fn non_negative(field: &str, v: f64) -> Result<(), MeshError> {
+/// `v` must be finite and ≥ 0; the error names `field` (a YAML path).
+pub(crate) fn non_negative(field: &str, v: f64) -> Result<(), MeshError> {
     if v.is_finite() && v >= 0.0 {
         Ok(())
     } else {

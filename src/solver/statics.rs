@@ -557,13 +557,7 @@ impl<'a> StaticProblem<'a> {
             owned_elem[e as usize] = self.active_block[mesh.elements[e as usize].block as usize];
         }
         let add = |e: usize, fe: &Vector24, f: &mut Vector| -> Result<(), SolveError> {
-            let rows: Vec<i32> = mesh.elements[e]
-                .nodes
-                .iter()
-                .flat_map(|&n| (0..3).map(move |c| (n, c)))
-                .map(|(n, c)| self.disc.dof(n, c))
-                .collect();
-            f.set_values(&rows, fe.as_slice(), true)?;
+            f.set_values(&self.element_dofs(e), fe.as_slice(), true)?;
             Ok(())
         };
         for term in &self.scene.stages[self.stage].terms {
@@ -617,6 +611,16 @@ impl<'a> StaticProblem<'a> {
         Ok(())
     }
 
+    /// Global DOFs of the 8 nodes of element `e` (input index), node-major.
+    fn element_dofs(&self, e: usize) -> Vec<i32> {
+        self.scene.mesh.elements[e]
+            .nodes
+            .iter()
+            .flat_map(|&n| (0..3).map(move |c| (n, c)))
+            .map(|(n, c)| self.disc.dof(n, c))
+            .collect()
+    }
+
     /// Adds to `f` the forces f₀ = ∫ Bᵀσ₀ dV of the placement stress σ₀ of every placed solid
     /// element (spec §8.6 item 1: a rockfill point is placed at p_min·I, not at zero stress).
     ///
@@ -642,13 +646,11 @@ impl<'a> StaticProblem<'a> {
             let geo = Hex8Geometry::new(&mesh.element_coords(e)).map_err(|_| SolveError::Geometry {
                 element: mesh.elements[e].id,
             })?;
-            let rows: Vec<i32> = mesh.elements[e]
-                .nodes
-                .iter()
-                .flat_map(|&n| (0..3).map(move |c| (n, c)))
-                .map(|(n, c)| self.disc.dof(n, c))
-                .collect();
-            f0.set_values(&rows, block.placement_force(&geo).as_slice(), true)?;
+            f0.set_values(
+                &self.element_dofs(e),
+                block.placement_force(&geo).as_slice(),
+                true,
+            )?;
         }
         f0.assemble()?;
         f.axpy(1.0, &f0)?;
