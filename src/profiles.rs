@@ -387,7 +387,8 @@ pub fn probe_history(
             .filter(|f| !f.interface_traction.is_empty())
             .map(|f| {
                 let t = &f.interface_traction[3 * e..3 * e + 3];
-                let sigma_n = -t[2];
+                // + 0.0 turns the −0 of an unloaded element into 0
+                let sigma_n = -t[2] + 0.0;
                 let tau = t[0].hypot(t[1]);
                 ProbeRow {
                     stage: f.name.clone(),

@@ -1,7 +1,8 @@
 //! The generated CFRD (issue 4) through its whole schedule on 2 ranks: a small seed-shaped dam
 //! with elastic rockfill, the hyperbolic slab-cushion interface and the slab joints runs every
 //! fill, slab and impoundment stage; at the end the reactions balance the weight and the water
-//! force, and the slab-cushion interface is closed and in compression below the water line.
+//! force, and the slab-cushion interface is closed and in compression below the water line; the
+//! seed-figure tables (`output.profiles`) describe the same state.
 
 mod common;
 use cfrd::element::hex8::{face_pressure_load, volume};
@@ -35,6 +36,7 @@ boundary:
 loads:
   gravity: {{ g: [0.0, 0.0, -{G}] }}
 solver: {{ petsc_options: '-ksp_type preonly -pc_type lu -pc_factor_mat_solver_type mumps' }}
+output: {{ profiles: {{ probes: [ {{ name: I-A, elevation: 2711.0 }} ] }} }}
 "
     )
 }
@@ -125,4 +127,60 @@ fn generated_dam_runs_its_schedule_and_balances_weight_and_water() {
         }
     }
     assert!(checked > 0);
+
+    // the seed-figure tables: both states of the slab profile, the probe through every stage
+    // (zero before the slab's casting), the interface profile in compression below the water line
+    let csv = |name: &str| -> Vec<Vec<String>> {
+        let text = std::fs::read_to_string(dir.path().join("out").join(name)).expect(name);
+        text.lines()
+            .skip(1)
+            .map(|l| l.split(',').map(str::to_string).collect())
+            .collect()
+    };
+    let slab = csv("fig08_slab_stress.csv");
+    let n_end = slab.iter().filter(|r| r[0] == "end of construction").count();
+    let n_imp = slab.iter().filter(|r| r[0] == "after impoundment").count();
+    println!("slab profile: {n_end} + {n_imp} rows");
+    assert!(n_end >= 2 && n_end == n_imp, "{n_end} vs {n_imp}");
+    let first_slab = model
+        .stages
+        .iter()
+        .position(|s| s.name.starts_with("slab_"))
+        .unwrap();
+    let probe = csv("fig10_probe_I-A.csv");
+    assert_eq!(probe.len(), model.stages.len(), "{probe:?}");
+    // before its casting the element carries nothing
+    assert!(
+        probe[..first_slab]
+            .iter()
+            .all(|r| r[1].parse::<f64>().unwrap() == 0.0),
+        "{probe:?}"
+    );
+    let sigma_n_end: f64 = probe.last().unwrap()[1].parse().unwrap();
+    println!("probe I-A: sigma_n after impoundment {sigma_n_end:.4e} Pa");
+    assert!(sigma_n_end > 0.0);
+    let iface = csv("fig11_interface.csv");
+    let below: Vec<f64> = iface
+        .iter()
+        .filter(|r| r[0].parse::<f64>().unwrap() < level - 10.0)
+        .map(|r| r[6].parse::<f64>().unwrap())
+        .collect();
+    assert!(!below.is_empty() && below.iter().all(|&s| s > 0.0), "{below:?}");
+    for png in [
+        "fig07_dam_displacement.png",
+        "fig08_slab_stress.png",
+        "fig09_slab_deflection.png",
+        "fig10_probe_I-A.png",
+        "fig11_interface.png",
+    ] {
+        assert!(
+            dir.path()
+                .join("out")
+                .join(png)
+                .metadata()
+                .map(|m| m.len() > 1000)
+                .unwrap_or(false),
+            "{png}"
+        );
+    }
 }
