@@ -364,15 +364,12 @@ pub fn write_profiles_from_results(
     h5: &Path,
     dir: &Path,
 ) -> Result<Vec<PathBuf>, String> {
-    let file = hdf5::File::open(h5).map_err(|e| format!("{}: {e}", h5.display()))?;
-    let steps = file
-        .group("/steps")
-        .map_err(|e| format!("{}: /steps: {e}", h5.display()))?;
-    let mut names = steps.member_names().map_err(|e| e.to_string())?;
-    names.sort();
+    use crate::io::compare::{open, stage_name, step_names};
+    let file = open(h5)?;
+    let names = step_names(&file, h5)?;
     let mut stages = Vec::with_capacity(names.len());
     for name in names {
-        let g = steps.group(&name).map_err(|e| e.to_string())?;
+        let g = file.group(&format!("/steps/{name}")).map_err(|e| e.to_string())?;
         let read = |field: &str| -> Result<Vec<f64>, String> {
             if !g.link_exists(field) {
                 return Ok(Vec::new());
@@ -381,11 +378,7 @@ pub fn write_profiles_from_results(
                 .and_then(|d| d.read_raw::<f64>())
                 .map_err(|e| format!("{}: /steps/{name}/{field}: {e}", h5.display()))
         };
-        let stage = g
-            .attr("stage")
-            .and_then(|a| a.read_scalar::<hdf5::types::VarLenUnicode>())
-            .map(|s| s.to_string())
-            .unwrap_or_else(|_| name.clone());
+        let stage = stage_name(&g).unwrap_or_else(|| name.clone());
         stages.push(crate::profiles::StageFields {
             name: stage,
             displacement: read("displacement")?,

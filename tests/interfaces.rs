@@ -113,13 +113,13 @@ struct Outcome {
     summary: serde_json::Value,
 }
 
-fn run(dir: &Path, np: usize, name: &str, text: &str) -> Result<Outcome, String> {
+fn run(dir: &Path, np: usize, name: &str, yaml: &str) -> Result<Outcome, String> {
     std::fs::write(dir.join("blocks.msh"), two_blocks_msh()).unwrap();
-    std::fs::write(dir.join(format!("{name}.yaml")), text).unwrap();
+    std::fs::write(dir.join(format!("{name}.yaml")), yaml).unwrap();
     let out = format!("{name}-{np}");
     let o = cfrd_mpi(np, dir, &["run", &format!("{name}.yaml"), "-o", &out, "-q"]);
     if !o.status.success() {
-        return Err(format!("exit {:?}: {}", o.status.code(), text_of(&o)));
+        return Err(format!("exit {:?}: {}", o.status.code(), text(&o)));
     }
     let file = dir.join(&out).join("results.h5");
     let ids = read_i64(&file, "/mesh/node_ids");
@@ -156,10 +156,6 @@ fn run(dir: &Path, np: usize, name: &str, text: &str) -> Result<Outcome, String>
     })
 }
 
-fn text_of(o: &std::process::Output) -> String {
-    text(o)
-}
-
 const PHI: f64 = 30.0;
 const P: f64 = 1.0e5;
 
@@ -179,9 +175,9 @@ fn mohr_coulomb_block_slips_at_the_friction_angle() {
     let mut forces = Vec::new();
     for (name, d, steps) in [("stick", 1.0e-2, 4), ("slip", 0.1, 20)] {
         let bc = format!("  - {{ set: top, fix: [x, y], value: [{d}, 0.0] }}");
-        let text = scene(&mc(), &bc, &loads, steps);
+        let yaml = scene(&mc(), &bc, &loads, steps);
         for np in [1, 2] {
-            let o = run(dir.path(), np, name, &text).unwrap_or_else(|e| panic!("{name} np {np}: {e}"));
+            let o = run(dir.path(), np, name, &yaml).unwrap_or_else(|e| panic!("{name} np {np}: {e}"));
             let ratio = o.top_reaction[0] / (P * area);
             let (points, slipping, open) = (
                 o.summary["interface_points"].as_u64().unwrap(),
@@ -242,9 +238,9 @@ fn block_on_an_inclined_mohr_coulomb_interface_slides_beyond_the_friction_angle(
             9.81 * t.sin(),
             -9.81 * t.cos()
         );
-        let text = scene(&mc(), bc, &loads, 2);
+        let yaml = scene(&mc(), bc, &loads, 2);
         for np in [1, 2] {
-            let r = run(dir.path(), np, name, &text);
+            let r = run(dir.path(), np, name, &yaml);
             match (name, r) {
                 ("well_below" | "below", Ok(o)) => {
                     let slipping = o.summary["interface_slipping"].as_u64().unwrap();
@@ -279,10 +275,10 @@ fn joint_opens_under_tension_with_the_tension_stiffness() {
     let area = SIDE * SIDE;
     for (name, d, k) in [("open", 1.0e-3, kt), ("close", -1.0e-5, kc)] {
         let bc = format!("  - {{ set: top, fix: [x, y, z], value: [0.0, 0.0, {d}] }}");
-        let text = scene(&joint, &bc, "{}", 1);
+        let yaml = scene(&joint, &bc, "{}", 1);
         let mut rz = Vec::new();
         for np in [1, 2] {
-            let o = run(dir.path(), np, name, &text).unwrap_or_else(|e| panic!("{name} np {np}: {e}"));
+            let o = run(dir.path(), np, name, &yaml).unwrap_or_else(|e| panic!("{name} np {np}: {e}"));
             let stiffness = o.top_reaction[2] / (area * o.jump[2]);
             println!(
                 "{name} np {np}: δ_n = {:.6e} m, opening {:.6e} m, R_z = {:.6e} N, R_z/(A δ_n) = {stiffness:.9e} Pa/m",
@@ -300,7 +296,7 @@ fn joint_opens_under_tension_with_the_tension_stiffness() {
         // `cfrd compare` agrees: every field of 1 and 2 ranks within 1e-8 relative
         let (a, b) = (format!("{name}-1/results.h5"), format!("{name}-2/results.h5"));
         let o = cfrd(dir.path(), &["compare", &a, &b, "--tolerance", "1e-8"]);
-        let report = text_of(&o);
+        let report = text(&o);
         println!("{report}");
         assert!(
             o.status.success() && report.contains("| interface_jump |"),

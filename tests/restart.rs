@@ -103,8 +103,8 @@ fn run_ok(np: usize, dir: &Path, args: &[&str]) {
     assert!(o.status.success(), "{args:?}: {}", text(&o));
 }
 
-#[test]
-fn restart_after_stage_two_is_bitwise_exact() {
+/// The column scene run uninterrupted on 2 ranks (`full/`) and stopped after stage 2 (`part/`).
+fn full_and_stopped_after_stage_two() -> tempfile::TempDir {
     let dir = tempdir();
     let d = dir.path();
     std::fs::write(d.join("col.yaml"), scene(2150.0, 2)).unwrap();
@@ -114,6 +114,13 @@ fn restart_after_stage_two_is_bitwise_exact() {
         d,
         &["run", "col.yaml", "-o", "part", "-q", "--stop-after-stage", "2"],
     );
+    dir
+}
+
+#[test]
+fn restart_after_stage_two_is_bitwise_exact() {
+    let dir = full_and_stopped_after_stage_two();
+    let d = dir.path();
     let ckpt = d.join("part/checkpoint.h5");
     assert_eq!(stages_done(&ckpt), 2);
     let size = std::fs::metadata(&ckpt).unwrap().len();
@@ -205,15 +212,8 @@ fn a_killed_run_restarts_from_its_last_checkpoint() {
 
 #[test]
 fn restart_on_one_rank_from_a_two_rank_checkpoint() {
-    let dir = tempdir();
+    let dir = full_and_stopped_after_stage_two();
     let d = dir.path();
-    std::fs::write(d.join("col.yaml"), scene(2150.0, 2)).unwrap();
-    run_ok(2, d, &["run", "col.yaml", "-o", "full", "-q"]);
-    run_ok(
-        2,
-        d,
-        &["run", "col.yaml", "-o", "part", "-q", "--stop-after-stage", "2"],
-    );
     run_ok(
         1,
         d,

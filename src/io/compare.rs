@@ -65,33 +65,40 @@ impl fmt::Display for DiffTable<'_> {
     }
 }
 
-fn open(p: &Path) -> Result<hdf5::File, String> {
+/// Opens a results file for serial reading (rank 0 or no MPI).
+pub(crate) fn open(p: &Path) -> Result<hdf5::File, String> {
     hdf5::File::open(p).map_err(|e| format!("{}: {e}", p.display()))
+}
+
+/// The step group names (`000001`, ...) of a results file, in order.
+pub(crate) fn step_names(f: &hdf5::File, p: &Path) -> Result<Vec<String>, String> {
+    let g = f
+        .group("/steps")
+        .map_err(|e| format!("{}: /steps: {e}", p.display()))?;
+    let mut v = g.member_names().map_err(|e| e.to_string())?;
+    v.sort();
+    Ok(v)
+}
+
+/// The `stage` attribute of a step group, if it has one.
+pub(crate) fn stage_name(g: &hdf5::Group) -> Option<String> {
+    g.attr("stage")
+        .and_then(|x| x.read_scalar::<hdf5::types::VarLenUnicode>())
+        .map(|s| s.to_string())
+        .ok()
 }
 
 /// Compares the fields of every step that both results files hold.
 pub fn compare_results(a: &Path, b: &Path) -> Result<Vec<FieldDiff>, String> {
     let (fa, fb) = (open(a)?, open(b)?);
-    let steps = |f: &hdf5::File, p: &Path| -> Result<Vec<String>, String> {
-        let g = f
-            .group("/steps")
-            .map_err(|e| format!("{}: /steps: {e}", p.display()))?;
-        let mut v = g.member_names().map_err(|e| e.to_string())?;
-        v.sort();
-        Ok(v)
-    };
-    let (sa, sb) = (steps(&fa, a)?, steps(&fb, b)?);
+    let (sa, sb) = (step_names(&fa, a)?, step_names(&fb, b)?);
     let mut out = Vec::new();
     for step in sa.iter().filter(|s| sb.contains(s)) {
         let (ga, gb) = (
             fa.group(&format!("/steps/{step}")).map_err(|e| e.to_string())?,
             fb.group(&format!("/steps/{step}")).map_err(|e| e.to_string())?,
         );
-        let stage = ga
-            .attr("stage")
-            .and_then(|x| x.read_scalar::<hdf5::types::VarLenUnicode>())
-            .map(|s| s.to_string())
-            .unwrap_or_default();
+        let stage = stage_name(&ga).unwrap_or_default();
         let mut fields = ga.member_names().map_err(|e| e.to_string())?;
         fields.sort();
         let mut step_diffs = Vec::new();
