@@ -436,10 +436,11 @@ fn default_option(name: &str, value: &str) -> Result<(), PetscError> {
 /// GAMG's default Chebyshev + Jacobi: Chebyshev needs a real spectrum and eigenvalue estimates
 /// that stay valid as the tangent changes; with the non-associated rockfill tangent it made the
 /// preconditioner so far from a fixed linear operator that right-preconditioned GMRES reported
-/// convergence (1e-10) on a solution 30 % off the direct solve's (measured on the cut-back test
-/// scene of `tests/step_control.rs`: relative residual after the next Newton iteration 2.9e-1
-/// with Chebyshev, 6.3e-2 with Richardson + SOR, Jacobi-smoothed or LU), and broke GMRES down
-/// (PETSc reason −5) on staged dams. `-mg_levels_*` options still override.
+/// convergence (rtol 1e-10) on a wrong Newton correction. Measured on a GP column under gravity
+/// and a 10 MPa surcharge (the scene of `tests/step_control.rs` with 10 MPa), relative residual
+/// after the first Newton iteration of the second load step: 2.2e-1 with Chebyshev (2.4e-1 even
+/// with `-ksp_rtol 1e-14`), 6.34e-2 with Richardson + SOR, 6.34e-2 with LU. It is the likely cause
+/// of the GMRES breakdowns (PETSc reason −5) seen earlier on staged dams.
 fn configure_ksp(ksp: p::KSP, rtol: f64, max_it: u32, symmetric: bool) -> Result<(), PetscError> {
     if symmetric {
         call!(KSPSetType(ksp, p::KSPCG.as_ptr() as *const c_char))?;
@@ -542,9 +543,10 @@ impl Snes {
         call!(SNESSetType(s.raw, p::SNESNEWTONLS.as_ptr() as *const c_char))?;
         // the problem's convergence test decides; only the iteration limit is SNES's own
         call!(SNESSetTolerances(s.raw, 0.0, 0.0, 0.0, max_it as i32, -1))?;
-        // the secant line search minimizing ‖F‖² along the Newton direction: on the cut-back
-        // test scene (tests/step_control.rs) it needs no cut-back where the full step (`basic`)
-        // needs one and backtracking (`bt`) two; `-snes_linesearch_type` overrides
+        // the secant line search minimizing ‖F‖² along the Newton direction: on the GP column
+        // of tests/step_control.rs with a 10 MPa surcharge and at most 6 Newton iterations it
+        // needs no cut-back ([4]) where the full step (`basic`) needs one ([6, 4]) and
+        // backtracking (`bt`) two ([6, 4, 4]); `-snes_linesearch_type` overrides
         let mut ls: p::SNESLineSearch = null_mut();
         call!(SNESGetLineSearch(s.raw, &mut ls))?;
         call!(SNESLineSearchSetType(
