@@ -89,6 +89,16 @@ enum Command {
         #[arg(long)]
         tolerance: Option<f64>,
     },
+    /// Overlay the slab profiles (seed Figs. 8, 9) of several runs with `output.profiles`, e.g.
+    /// one per interface model: `cfrd overlay hyperbolic=out/a mohr_coulomb=out/b -o fig.png`.
+    Overlay {
+        /// `LABEL=DIR` pairs, DIR holding the run's `fig08_slab_stress.csv`.
+        #[arg(required = true)]
+        runs: Vec<String>,
+        /// Output PNG.
+        #[arg(short = 'o', long = "out")]
+        out: PathBuf,
+    },
     /// Run material-point tests from a YAML file: drained triaxial (monotonic, cyclic),
     /// oedometer, isotropic compression, interface direct shear (CNL, CNS, monotonic, cyclic,
     /// model comparison); writes CSV tables and a PNG figure (`inputs/point/README.md`).
@@ -149,9 +159,12 @@ fn main() -> ExitCode {
         },
         Command::Compare { a, b, tolerance } => match cfrd::io::compare::compare_results(&a, &b) {
             Ok(diffs) => {
-                print!("{}", cfrd::io::compare::DiffTable(&diffs));
+                use std::io::Write as _;
                 let worst = diffs.iter().map(|d| d.relative()).fold(0.0, f64::max);
-                println!("largest relative difference: {worst:.3e}");
+                // a closed pipe (`cfrd compare a b | head`) is not an error of the comparison
+                let mut out = std::io::stdout().lock();
+                let _ = write!(out, "{}", cfrd::io::compare::DiffTable(&diffs))
+                    .and_then(|()| writeln!(out, "largest relative difference: {worst:.3e}"));
                 match tolerance {
                     Some(t) if worst > t => ExitCode::from(1),
                     _ => ExitCode::SUCCESS,
@@ -162,6 +175,25 @@ fn main() -> ExitCode {
                 ExitCode::from(2)
             }
         },
+        Command::Overlay { runs, out } => {
+            let pairs: Result<Vec<(String, PathBuf)>, String> = runs
+                .iter()
+                .map(|r| match r.split_once('=') {
+                    Some((l, d)) if !l.is_empty() && !d.is_empty() => Ok((l.to_string(), PathBuf::from(d))),
+                    _ => Err(format!("'{r}': expected LABEL=DIR")),
+                })
+                .collect();
+            match pairs.map(|p| cfrd::profiles::overlay_slab_profiles(&p, &out).map_err(|e| e.to_string())) {
+                Ok(Ok(n)) => {
+                    println!("{n} rows from {} run(s): {}", runs.len(), out.display());
+                    ExitCode::SUCCESS
+                }
+                Ok(Err(e)) | Err(e) => {
+                    eprintln!("error: {e}");
+                    ExitCode::from(2)
+                }
+            }
+        }
         Command::Partition { scene, parts, out } => match partition_ahead(&scene, parts, &out) {
             Ok(msg) => {
                 println!("{msg}");

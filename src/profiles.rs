@@ -410,6 +410,101 @@ pub fn construction_end(spec: &ProfilesSpec, stages: &[StageFields]) -> Option<u
 }
 
 /// Writes the CSV `name` into `dir` and records it in `files`.
+/// One row of a `fig08_slab_stress.csv` table.
+#[derive(Debug, Clone, PartialEq)]
+struct SlabTableRow {
+    state: String,
+    z: f64,
+    sigma_slope: f64,
+    sigma_axis: f64,
+    deflection: f64,
+}
+
+/// Reads the `fig08_slab_stress.csv` of a run directory.
+fn read_slab_table(dir: &Path) -> Result<Vec<SlabTableRow>, ProfilesError> {
+    let path = dir.join("fig08_slab_stress.csv");
+    let text = std::fs::read_to_string(&path).map_err(|source| ProfilesError::Io {
+        path: path.clone(),
+        source,
+    })?;
+    let mut rows = Vec::new();
+    for (i, line) in text.lines().enumerate().skip(1) {
+        let f: Vec<&str> = line.split(',').collect();
+        let num = |k: usize| f.get(k).and_then(|v| v.trim().parse::<f64>().ok());
+        match (f.first(), num(1), num(2), num(3), num(4)) {
+            (Some(state), Some(z), Some(s), Some(a), Some(d)) if f.len() == 5 => rows.push(SlabTableRow {
+                state: state.to_string(),
+                z,
+                sigma_slope: s,
+                sigma_axis: a,
+                deflection: d,
+            }),
+            _ => {
+                return Err(ProfilesError::Missing(format!(
+                    "{}: line {}: expected state,z_m,sigma_slope_Pa,sigma_axis_Pa,deflection_m",
+                    path.display(),
+                    i + 1
+                )))
+            }
+        }
+    }
+    if rows.is_empty() {
+        return Err(ProfilesError::Missing(format!("{}: no rows", path.display())));
+    }
+    Ok(rows)
+}
+
+/// Overlays the slab profiles (seed Figs. 8 and 9) of several runs, e.g. one per interface
+/// model: σ_s, σ_a and the deflection versus elevation at the end of construction and after
+/// impoundment, one panel each, one line per run. `runs` are (label, run directory holding
+/// `fig08_slab_stress.csv`). Returns the number of rows read.
+pub fn overlay_slab_profiles(runs: &[(String, PathBuf)], png: &Path) -> Result<usize, ProfilesError> {
+    let tables = runs
+        .iter()
+        .map(|(label, dir)| Ok((label.as_str(), read_slab_table(dir)?)))
+        .collect::<Result<Vec<_>, ProfilesError>>()?;
+    let mut states: Vec<String> = Vec::new();
+    for (_, rows) in &tables {
+        for r in rows {
+            if !states.contains(&r.state) {
+                states.push(r.state.clone());
+            }
+        }
+    }
+    type Pick = fn(&SlabTableRow) -> f64;
+    let quantities: [(&str, &str, Pick); 3] = [
+        ("Slab stress along the slope", "sigma_s (MPa, tension +)", |r| {
+            r.sigma_slope / 1e6
+        }),
+        (
+            "Slab stress along the dam axis",
+            "sigma_a (MPa, tension +)",
+            |r| r.sigma_axis / 1e6,
+        ),
+        ("Slab deflection", "deflection (cm, towards the dam +)", |r| {
+            r.deflection * 100.0
+        }),
+    ];
+    let mut figure =
+        Figure::new("Slab at the central section by interface model (seed Figs. 8, 9)").columns(2);
+    for (title, x_label, pick) in quantities {
+        for state in &states {
+            let mut panel = Panel::new(format!("{title}, {state}"), x_label, "z (m)");
+            for (label, rows) in &tables {
+                let points: Vec<(f64, f64)> = rows
+                    .iter()
+                    .filter(|r| &r.state == state)
+                    .map(|r| (pick(r), r.z))
+                    .collect();
+                panel.push(Series::line(*label, points));
+            }
+            figure.push(panel);
+        }
+    }
+    figure.save_png(png)?;
+    Ok(tables.iter().map(|(_, rows)| rows.len()).sum())
+}
+
 fn csv_out(dir: &Path, files: &mut Vec<PathBuf>, name: &str, text: String) -> Result<(), ProfilesError> {
     let path = dir.join(name);
     std::fs::write(&path, text).map_err(|source| ProfilesError::Io {
@@ -607,6 +702,38 @@ pub fn write_profiles(
 mod tests {
     use super::*;
     use crate::mesh::generate::{box_mesh, BoxSpec};
+
+    /// `cfrd overlay`: the tables of two runs become one figure; a malformed row is an error
+    /// that names the file and the line.
+    #[test]
+    fn overlay_reads_the_slab_tables_of_several_runs() {
+        let tmp = tempfile::tempdir().unwrap();
+        let header = "state,z_m,sigma_slope_Pa,sigma_axis_Pa,deflection_m\n";
+        let mut runs = Vec::new();
+        for (k, label) in ["hyperbolic", "mohr_coulomb"].iter().enumerate() {
+            let dir = tmp.path().join(label);
+            std::fs::create_dir(&dir).unwrap();
+            let mut text = header.to_string();
+            for state in ["end of construction", "after impoundment"] {
+                for z in [2700.0, 2750.0, 2800.0] {
+                    let _ = writeln!(text, "{state},{z},{},{},{}", -1e6 * (k + 1) as f64, 2e5, 0.01);
+                }
+            }
+            std::fs::write(dir.join("fig08_slab_stress.csv"), text).unwrap();
+            runs.push((label.to_string(), dir));
+        }
+        let png = tmp.path().join("overlay.png");
+        assert_eq!(overlay_slab_profiles(&runs, &png).expect("overlay"), 12);
+        assert!(std::fs::metadata(&png).expect("png written").len() > 1000);
+
+        std::fs::write(
+            runs[1].1.join("fig08_slab_stress.csv"),
+            format!("{header}after impoundment,2700,-1e6,oops,0.01\n"),
+        )
+        .unwrap();
+        let e = overlay_slab_profiles(&runs, &png).unwrap_err().to_string();
+        assert!(e.contains("mohr_coulomb") && e.contains("line 2"), "{e}");
+    }
 
     #[test]
     fn slab_frame_of_a_thin_element_on_the_upstream_slope() {

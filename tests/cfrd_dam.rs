@@ -184,3 +184,67 @@ fn generated_dam_runs_its_schedule_and_balances_weight_and_water() {
         );
     }
 }
+
+/// Issue 4, acceptance 4: step control under stress. The same small dam with generalized-
+/// plasticity rockfill and one load step per stage: the fill layers and the impoundment are
+/// too large for one Newton solve (at most 15 iterations), so steps are cut back and regrown;
+/// the slab-cushion interface opens near the crest. The run completes on 2 ranks and its
+/// summary counts the cut-backs, the Newton iterations of every converged step, and the open
+/// and slipping interface points.
+#[test]
+fn gp_dam_forces_cutbacks_and_opens_the_interface() {
+    let dir = tempdir();
+    let yaml = format!(
+        "name: cfrd-small-gp
+units: SI
+mesh:
+  cfrd: {MESH}
+materials:
+  fill: {{ model: rockfill_gp }}
+  slab: {{ model: elastic, young: 25.5e9, poisson: 0.167, density: {RHO_SLAB} }}
+  interface: {{ model: hyperbolic }}
+  joint: {{ model: joint }}
+blocks:
+  'fill_*': {{ material: fill }}
+  'slab_*': {{ material: slab }}
+  'interface_*': {{ material: interface }}
+  'joint_*': {{ material: joint }}
+boundary:
+  - {{ set: foundation, fix: [x, y, z] }}
+  - {{ set: plinth, fix: [x, y, z] }}
+loads:
+  gravity: {{ g: [0.0, 0.0, -{G}] }}
+solver: {{ newton_tol: 1.0e-5, newton_max_iterations: 15, petsc_options: '-ksp_type preonly -pc_type lu -pc_factor_mat_solver_type mumps' }}
+"
+    );
+    std::fs::write(dir.path().join("gp.yaml"), yaml).unwrap();
+    let o = cfrd_mpi(2, dir.path(), &["run", "gp.yaml", "-o", "out"]);
+    let out = text(&o);
+    assert!(o.status.success(), "{out}");
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("out/summary.json")).unwrap()).unwrap();
+    let n = |k: &str| s[k].as_u64().unwrap_or_else(|| panic!("summary has {k}"));
+    let per_step: Vec<u64> = s["newton_per_step"]
+        .as_array()
+        .expect("newton_per_step")
+        .iter()
+        .map(|v| v.as_u64().unwrap())
+        .collect();
+    println!(
+        "cut-backs {}, steps {}, Newton {} {per_step:?}, interface points {} open {} slipping {}",
+        n("cutbacks"),
+        n("steps"),
+        n("newton_iterations"),
+        n("interface_points"),
+        n("interface_open"),
+        n("interface_slipping")
+    );
+    // 9 stages of one load step each: every cut-back adds converged steps
+    assert!(n("cutbacks") >= 1, "the scene forces cut-backs");
+    assert_eq!(per_step.len() as u64, n("steps"));
+    assert!(n("steps") > 9, "cut steps were regrown in more, smaller steps");
+    assert_eq!(per_step.iter().sum::<u64>(), n("newton_iterations"));
+    assert!(per_step.iter().all(|&k| (1..=15).contains(&k)), "{per_step:?}");
+    assert!(n("interface_open") > 0 && n("interface_open") < n("interface_points"));
+    assert!(out.contains("cut-back"), "the run reports its cut-backs: {out}");
+}

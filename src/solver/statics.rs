@@ -18,11 +18,12 @@ use crate::element::interface_frame::FrameAxes;
 use crate::linalg::petsc::{Gather, Matrix, Petsc, PetscError, Snes, SnesOutcome, SnesProblem, Vector};
 use crate::material::BlockMaterial;
 use crate::mesh::Mesh;
-use crate::parallel::any_true;
 use crate::parallel::{any_error, sum_f64, sum_u64};
+use crate::parallel::{any_true, broadcast_vec, max_f64};
 use crate::scene::schema::PlacedNodes;
 use crate::scene::{Scene, Term};
 use crate::tensor::{Strain6, Stress6};
+use mpi::collective::{CommunicatorCollectives, SystemOperation};
 use mpi::topology::SimpleCommunicator;
 use mpi::traits::Communicator;
 use partition::Cells;
@@ -57,20 +58,30 @@ pub enum SolveError {
         iterations: u32,
     },
     /// Newton did not converge.
-    #[error("Newton did not converge in {iterations} iterations (relative residual {residual:.3e})")]
+    #[error(
+        "Newton did not converge in {iterations} iterations (relative residual {residual:.3e}); \
+         {worst}"
+    )]
     Newton {
         /// Iterations done.
         iterations: u32,
         /// Last relative residual.
         residual: f64,
+        /// Where the out-of-balance force of the last iterate is largest.
+        worst: String,
     },
     /// The line search found no step that reduces the residual.
-    #[error("line search failed after {iterations} Newton iterations (relative residual {residual:.3e})")]
+    #[error(
+        "line search failed after {iterations} Newton iterations (relative residual \
+         {residual:.3e}); {worst}"
+    )]
     LineSearch {
         /// Iterations done.
         iterations: u32,
         /// Last relative residual.
         residual: f64,
+        /// Where the out-of-balance force of the last iterate is largest.
+        worst: String,
     },
     /// A material update failed on some rank (message of the lowest failing rank).
     #[error("{0}")]
@@ -862,6 +873,9 @@ impl<'a> StaticProblem<'a> {
             report,
             assembly_seconds,
             last_linear_iterations,
+            f_ext,
+            f_int,
+            targets,
             ..
         } = step;
         problem.snes = Some(snes);
@@ -893,9 +907,67 @@ impl<'a> StaticProblem<'a> {
                 reason,
                 iterations: last_linear_iterations,
             }),
-            SnesOutcome::LineSearch => Err(SolveError::LineSearch { iterations, residual }),
-            SnesOutcome::Diverged(_) => Err(SolveError::Newton { iterations, residual }),
+            SnesOutcome::LineSearch => Err(SolveError::LineSearch {
+                iterations,
+                residual,
+                worst: problem.worst_node(&f_int, &f_ext, &targets)?,
+            }),
+            SnesOutcome::Diverged(_) => Err(SolveError::Newton {
+                iterations,
+                residual,
+                worst: problem.worst_node(&f_int, &f_ext, &targets)?,
+            }),
         }
+    }
+
+    /// Names the node where the out-of-balance force f_int − f_ext of the last evaluated
+    /// iterate is largest (free components only), with its coordinates and the blocks of the
+    /// elements around it, for the report of a failed step (collective).
+    fn worst_node(
+        &self,
+        f_int: &Vector,
+        f_ext: &Vector,
+        targets: &[(usize, f64)],
+    ) -> Result<String, SolveError> {
+        let mut r: Vec<f64> =
+            f_int.read(|a| f_ext.read(|b| a.iter().zip(b).map(|(p, q)| p - q).collect()))??;
+        for &(l, _) in targets {
+            r[l] = 0.0;
+        }
+        let (mut best, mut node) = (-1.0f64, 0usize);
+        for (i, &n) in self.disc.owned_nodes.iter().enumerate() {
+            let v = (r[3 * i].powi(2) + r[3 * i + 1].powi(2) + r[3 * i + 2].powi(2)).sqrt();
+            if v > best {
+                (best, node) = (v, n as usize);
+            }
+        }
+        let world = SimpleCommunicator::world();
+        let top = max_f64(&world, best);
+        let holder = if best == top { world.rank() } else { i32::MAX };
+        let mut root = i32::MAX;
+        world.all_reduce_into(&holder, &mut root, SystemOperation::min());
+        let mesh = &self.scene.mesh;
+        let mut msg: Vec<u8> = if world.rank() == root {
+            let mut blocks: Vec<&str> = mesh
+                .elements
+                .iter()
+                .filter(|el| el.nodes.contains(&(node as u32)))
+                .map(|el| mesh.blocks[el.block as usize].name.as_str())
+                .collect();
+            blocks.sort_unstable();
+            blocks.dedup();
+            let [x, y, z] = mesh.coords[node];
+            format!(
+                "largest out-of-balance force {top:.3e} N at node {} ({x:.2}, {y:.2}, {z:.2}) in {}",
+                mesh.node_ids[node],
+                blocks.join(", ")
+            )
+            .into_bytes()
+        } else {
+            Vec::new()
+        };
+        broadcast_vec(&world, root, &mut msg);
+        Ok(String::from_utf8_lossy(&msg).into_owned())
     }
 
     /// Counts the interface points of placed elements that are open or slipping in the

@@ -1,0 +1,72 @@
+#!/usr/bin/env bash
+# Seed static study on the coarse mesh (issue 4, acceptance 2 and 5): runs the three coarse seed
+# scenes (hyperbolic, Mohr-Coulomb and GP slab-cushion interface) through construction and
+# impoundment on 2 ranks and on 1 rank, compares the 1- and 2-rank results field by field, and
+# makes the figures and tables the README shows, kept in scripts/figures/:
+#   seed_static_slab.png         slab stresses and deflection of the three models (seed Figs. 8, 9)
+#   seed_static_<model>_fig*.png each run's own Figs. 7-11 (2 ranks)
+#   seed_static_runs.csv         wall time, peak memory, Newton iterations, cut-backs per run
+#   seed_static_compare.txt      largest 1-vs-2-rank difference per model
+#
+# Usage: scripts/make_seed_static_figures.sh [RUN_DIR]
+#   RUN_DIR (default: a new temporary directory) keeps the runs; when RUN_DIR/<model>_<n>
+#   already holds a finished run (summary.json), that run is not repeated.
+# Needs about 45 minutes on 2 cores. 1-rank runs use PETSc's own LU (MUMPS is 15x slower on
+# this size); 2-rank runs use the scenes' MUMPS.
+set -euo pipefail
+
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$root"
+cargo build --release
+bin="${CARGO_TARGET_DIR:-$root/target}/release/cfrd"
+runs="${1:-$(mktemp -d)}"
+mkdir -p "$runs"
+source ci/env.sh
+export MPIEXEC_TIMEOUT=5400
+models=(hyperbolic mohr_coulomb gp_interface)
+
+run() { # model ranks
+    local m=$1 n=$2 out="$runs/$1_$2"
+    [ -f "$out/summary.json" ] && return 0
+    local extra=()
+    [ "$n" = 1 ] && extra=(-pc_factor_mat_solver_type petsc)
+    /usr/bin/time -v mpirun -n "$n" "$bin" run "inputs/scenes/seed_coarse_$m.yaml" -o "$out" "${extra[@]}" \
+        > "$runs/$1_$2.log" 2>&1
+}
+for m in "${models[@]}"; do run "$m" 2; done
+for m in "${models[@]}"; do run "$m" 1; done
+
+figures="$root/scripts/figures"
+mkdir -p "$figures"
+"$bin" overlay hyperbolic="$runs/hyperbolic_2" mohr_coulomb="$runs/mohr_coulomb_2" \
+    gp_interface="$runs/gp_interface_2" -o "$figures/seed_static_slab.png"
+for m in "${models[@]}"; do
+    for f in "$runs/${m}_2"/fig*.png; do
+        cp "$f" "$figures/seed_static_${m}_$(basename "$f")"
+    done
+done
+{
+    echo "model,ranks,wall_s,peak_rss_mib,newton_iterations,steps,cutbacks,interface_points,open,slipping,max_newton_per_step"
+    for m in "${models[@]}"; do
+        for n in 2 1; do
+            python3 - "$runs/${m}_$n/summary.json" "$runs/${m}_$n.log" "$m" "$n" <<'PY'
+import json, re, sys
+s = json.load(open(sys.argv[1]))
+log = open(sys.argv[2]).read()
+wall = s["total_seconds"]
+rss = max(s["peak_memory_bytes_per_rank"]) / 2**20
+print(f'{sys.argv[3]},{sys.argv[4]},{wall:.0f},{rss:.0f},{s["newton_iterations"]},{s["steps"]},'
+      f'{s["cutbacks"]},{s["interface_points"]},{s["interface_open"]},{s["interface_slipping"]},'
+      f'{max(s["newton_per_step"])}')
+PY
+        done
+    done
+} > "$figures/seed_static_runs.csv"
+{
+    for m in "${models[@]}"; do
+        printf '%s: ' "$m"
+        "$bin" compare "$runs/${m}_1/results.h5" "$runs/${m}_2/results.h5" | tail -n 1
+    done
+} > "$figures/seed_static_compare.txt"
+cat "$figures/seed_static_runs.csv" "$figures/seed_static_compare.txt"
+echo "figures written to $figures (runs in $runs)"
