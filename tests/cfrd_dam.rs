@@ -190,7 +190,8 @@ fn generated_dam_runs_its_schedule_and_balances_weight_and_water() {
 /// too large for one Newton solve (at most 15 iterations), so steps are cut back and regrown;
 /// the slab-cushion interface opens near the crest. The run completes on 2 ranks and its
 /// summary counts the cut-backs, the Newton iterations of every converged step, and the open
-/// and slipping interface points.
+/// and slipping interface points; the monitor names the node of the largest out-of-balance
+/// force of a stalled step.
 #[test]
 fn gp_dam_forces_cutbacks_and_opens_the_interface() {
     let dir = tempdir();
@@ -214,7 +215,7 @@ boundary:
   - {{ set: plinth, fix: [x, y, z] }}
 loads:
   gravity: {{ g: [0.0, 0.0, -{G}] }}
-solver: {{ newton_tol: 1.0e-5, newton_max_iterations: 15, petsc_options: '-ksp_type preonly -pc_type lu -pc_factor_mat_solver_type mumps' }}
+solver: {{ newton_tol: 1.0e-5, newton_max_iterations: 15, monitor: true, petsc_options: '-ksp_type preonly -pc_type lu -pc_factor_mat_solver_type mumps' }}
 "
     );
     std::fs::write(dir.path().join("gp.yaml"), yaml).unwrap();
@@ -247,4 +248,16 @@ solver: {{ newton_tol: 1.0e-5, newton_max_iterations: 15, petsc_options: '-ksp_t
     assert!(per_step.iter().all(|&k| (1..=15).contains(&k)), "{per_step:?}");
     assert!(n("interface_open") > 0 && n("interface_open") < n("interface_points"));
     assert!(out.contains("cut-back"), "the run reports its cut-backs: {out}");
+    // the monitor gives the reason of every cut-back; a stalled Newton names the node where the
+    // last iterate is most out of balance
+    let stalled = out
+        .lines()
+        .find(|l| l.contains("cut back: Newton did not converge"))
+        .expect("a step stalled in Newton");
+    assert!(
+        stalled.contains("largest out-of-balance force")
+            && stalled.contains(" at node ")
+            && stalled.contains("fill_"),
+        "{stalled}"
+    );
 }

@@ -257,11 +257,6 @@ fn block_on_an_inclined_mohr_coulomb_interface_slides_beyond_the_friction_angle(
                     println!("θ = {theta}°, np {np}: {e}");
                     assert!(e.starts_with("exit Some(3)"), "{e}");
                     assert!(e.contains("last converged state is λ = 0.000000"), "{e}");
-                    // the report names where the last iterate is out of balance
-                    assert!(
-                        e.contains("largest out-of-balance force") && e.contains(" at node "),
-                        "{e}"
-                    );
                 }
                 (_, r) => panic!("θ = {theta}°, np {np}: unexpected outcome {:?}", r.err()),
             }
