@@ -26,7 +26,7 @@ declare -A solver=(
   [fine]="solver: { newton_tol: 1.0e-5, newton_max_iterations: 15 }"
 )
 declare -A note=(
-  [coarse]="coarse mesh (panels 30 m, wider than the seed's 12-18 m; a quick check, about a minute on 2 cores)"
+  [coarse]="coarse mesh (panels 30 m, wider than the seed's 12-18 m; about 7 minutes on 2 cores)"
   [medium]="medium mesh (panels 15 m)"
   [fine]="fine mesh (86 fill layers as in the seed, about the paper's 74 521 elements)"
 )
