@@ -14,14 +14,25 @@ const RHO_FILL: f64 = 2150.0;
 const RHO_SLAB: f64 = 2400.0;
 const G: f64 = 9.81;
 
+/// The elastic-rockfill dam with the seed-figure outputs.
 fn scene() -> String {
+    dam_scene(
+        &format!("{{ model: elastic, young: 3.0e8, poisson: 0.3, density: {RHO_FILL} }}"),
+        "{ petsc_options: '-ksp_type preonly -pc_type lu -pc_factor_mat_solver_type mumps' }",
+        "output: { profiles: { probes: [ { name: I-A, elevation: 2711.0 } ] } }",
+    )
+}
+
+/// The small generated dam with the fill material `fill`, the solver settings `solver` and an
+/// extra last line `tail` (YAML flow mappings).
+fn dam_scene(fill: &str, solver: &str, tail: &str) -> String {
     format!(
         "name: cfrd-small
 units: SI
 mesh:
   cfrd: {MESH}
 materials:
-  fill: {{ model: elastic, young: 3.0e8, poisson: 0.3, density: {RHO_FILL} }}
+  fill: {fill}
   slab: {{ model: elastic, young: 25.5e9, poisson: 0.167, density: {RHO_SLAB} }}
   interface: {{ model: hyperbolic }}
   joint: {{ model: joint }}
@@ -35,8 +46,8 @@ boundary:
   - {{ set: plinth, fix: [x, y, z] }}
 loads:
   gravity: {{ g: [0.0, 0.0, -{G}] }}
-solver: {{ petsc_options: '-ksp_type preonly -pc_type lu -pc_factor_mat_solver_type mumps' }}
-output: {{ profiles: {{ probes: [ {{ name: I-A, elevation: 2711.0 }} ] }} }}
+solver: {solver}
+{tail}
 "
     )
 }
@@ -195,28 +206,10 @@ fn generated_dam_runs_its_schedule_and_balances_weight_and_water() {
 #[test]
 fn gp_dam_forces_cutbacks_and_opens_the_interface() {
     let dir = tempdir();
-    let yaml = format!(
-        "name: cfrd-small-gp
-units: SI
-mesh:
-  cfrd: {MESH}
-materials:
-  fill: {{ model: rockfill_gp }}
-  slab: {{ model: elastic, young: 25.5e9, poisson: 0.167, density: {RHO_SLAB} }}
-  interface: {{ model: hyperbolic }}
-  joint: {{ model: joint }}
-blocks:
-  'fill_*': {{ material: fill }}
-  'slab_*': {{ material: slab }}
-  'interface_*': {{ material: interface }}
-  'joint_*': {{ material: joint }}
-boundary:
-  - {{ set: foundation, fix: [x, y, z] }}
-  - {{ set: plinth, fix: [x, y, z] }}
-loads:
-  gravity: {{ g: [0.0, 0.0, -{G}] }}
-solver: {{ newton_tol: 1.0e-5, newton_max_iterations: 15, monitor: true, petsc_options: '-ksp_type preonly -pc_type lu -pc_factor_mat_solver_type mumps' }}
-"
+    let yaml = dam_scene(
+        "{ model: rockfill_gp }",
+        "{ newton_tol: 1.0e-5, newton_max_iterations: 15, monitor: true, petsc_options: '-ksp_type preonly -pc_type lu -pc_factor_mat_solver_type mumps' }",
+        "",
     );
     std::fs::write(dir.path().join("gp.yaml"), yaml).unwrap();
     let o = cfrd_mpi(2, dir.path(), &["run", "gp.yaml", "-o", "out"]);
