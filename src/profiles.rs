@@ -409,7 +409,6 @@ pub fn construction_end(spec: &ProfilesSpec, stages: &[StageFields]) -> Option<u
         .rposition(|f| !f.name.starts_with(&spec.impoundment_prefix))
 }
 
-/// Writes the CSV `name` into `dir` and records it in `files`.
 /// One row of a `fig08_slab_stress.csv` table.
 #[derive(Debug, Clone, PartialEq)]
 struct SlabTableRow {
@@ -505,6 +504,7 @@ pub fn overlay_slab_profiles(runs: &[(String, PathBuf)], png: &Path) -> Result<u
     Ok(tables.iter().map(|(_, rows)| rows.len()).sum())
 }
 
+/// Writes the CSV `name` into `dir` and records it in `files`.
 fn csv_out(dir: &Path, files: &mut Vec<PathBuf>, name: &str, text: String) -> Result<(), ProfilesError> {
     let path = dir.join(name);
     std::fs::write(&path, text).map_err(|source| ProfilesError::Io {
