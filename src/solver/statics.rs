@@ -921,8 +921,8 @@ impl<'a> StaticProblem<'a> {
     }
 
     /// Names the node where the out-of-balance force f_int − f_ext of the last evaluated
-    /// iterate is largest (free components only), with its coordinates and the blocks of the
-    /// elements around it, for the report of a failed step (collective).
+    /// iterate is largest (free components only), with its coordinates and the placed blocks
+    /// around it, for the report of a failed step (collective). Non-finite forces are skipped.
     fn worst_node(
         &self,
         f_int: &Vector,
@@ -947,11 +947,14 @@ impl<'a> StaticProblem<'a> {
         let mut root = i32::MAX;
         world.all_reduce_into(&holder, &mut root, SystemOperation::min());
         let mesh = &self.scene.mesh;
+        if top < 0.0 {
+            return Ok("no node has a finite out-of-balance force".into());
+        }
         let mut msg: Vec<u8> = if world.rank() == root {
             let mut blocks: Vec<&str> = mesh
                 .elements
                 .iter()
-                .filter(|el| el.nodes.contains(&(node as u32)))
+                .filter(|el| self.active_block[el.block as usize] && el.nodes.contains(&(node as u32)))
                 .map(|el| mesh.blocks[el.block as usize].name.as_str())
                 .collect();
             blocks.sort_unstable();
