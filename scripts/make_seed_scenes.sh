@@ -22,8 +22,8 @@ declare -A mesh=(
 # leaves an out-of-balance noise of about STOL x stress x face area, measured on the coarse
 # mesh's first fill layer as 3e3 N at a cushion corner node, 2e-6 of the layer's weight; the
 # default 1e-8 lies below that floor and every step would be cut back. At most 15 Newton
-# iterations: converged steps took 4-19 (median 7) on the coarse mesh, and a step that stalls is
-# cut back sooner
+# iterations: a step that stalls is cut back sooner; in the coarse runs (README) the converged steps
+# took 3-15 iterations, median 6-7
 declare -A solver=(
   [coarse]="solver: { newton_tol: 1.0e-5, newton_max_iterations: 15, petsc_options: \"-ksp_type preonly -pc_type lu -pc_factor_mat_solver_type mumps\" }"
   [medium]="solver: { newton_tol: 1.0e-5, newton_max_iterations: 15, petsc_options: \"-ksp_type preonly -pc_type redundant -redundant_pc_type lu\" }"
