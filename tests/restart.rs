@@ -29,13 +29,7 @@ blocks:
         s += &format!("  layer_{k}: {{ material: fill }}\n");
     }
     s += &format!(
-        "boundary:
-  - {{ set: zmin, fix: [x, y, z] }}
-  - {{ set: xmin, fix: [x] }}
-  - {{ set: xmax, fix: [x] }}
-  - {{ set: ymin, fix: [y] }}
-  - {{ set: ymax, fix: [y] }}
-loads:
+        "{CONFINED_COLUMN_BOUNDARY}loads:
   gravity: {{ g: [0.0, 0.0, -9.81] }}
 solver: {{ load_steps: {steps} }}
 stages:

@@ -24,13 +24,8 @@ blocks:
     for k in 1..=LAYERS {
         s += &format!("  layer_{k}: {{ material: soil }}\n");
     }
-    s += "boundary:
-  - { set: zmin, fix: [x, y, z] }
-  - { set: xmin, fix: [x] }
-  - { set: xmax, fix: [x] }
-  - { set: ymin, fix: [y] }
-  - { set: ymax, fix: [y] }
-loads:
+    s += CONFINED_COLUMN_BOUNDARY;
+    s += "loads:
   gravity: { g: [0.0, 0.0, -9.81] }
 solver: { rtol: 1.0e-12, petsc_options: '-pc_type jacobi' }
 ";

@@ -16,13 +16,7 @@ materials:
   fill: {{ model: rockfill_gp, density: 2150.0 }}
 blocks:
   layer_1: {{ material: fill }}
-boundary:
-  - {{ set: zmin, fix: [x, y, z] }}
-  - {{ set: xmin, fix: [x] }}
-  - {{ set: xmax, fix: [x] }}
-  - {{ set: ymin, fix: [y] }}
-  - {{ set: ymax, fix: [y] }}
-loads:
+{CONFINED_COLUMN_BOUNDARY}loads:
   gravity: {{ g: [0.0, 0.0, -9.81] }}
   pressure: [ {{ faces: zmax, value: 3.0e7 }} ]
 solver: {{ load_steps: 1, newton_max_iterations: {newton_max} }}

@@ -155,3 +155,13 @@ pub fn layout(path: &Path) -> Vec<(String, Vec<usize>)> {
     out.sort();
     out
 }
+
+/// Boundary of a laterally confined box column (oedometric conditions): base fixed, the four
+/// sides on rollers. A complete `boundary:` section of a scene, ending with a newline.
+pub const CONFINED_COLUMN_BOUNDARY: &str = "boundary:
+  - { set: zmin, fix: [x, y, z] }
+  - { set: xmin, fix: [x] }
+  - { set: xmax, fix: [x] }
+  - { set: ymin, fix: [y] }
+  - { set: ymax, fix: [y] }
+";
