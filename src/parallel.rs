@@ -96,3 +96,33 @@ pub fn max_f64(world: &SimpleCommunicator, v: f64) -> f64 {
     world.all_reduce_into(&v, &mut out, SystemOperation::max());
     out
 }
+
+/// Sum of `local` over all ranks, bit for bit independent of the rank count, of how the terms
+/// are spread over the ranks and of their order ([`crate::solver::exact_sum`]: exact fixed-point
+/// accumulation on a grid set by the largest magnitude). NaN if any term is not finite.
+/// Collective.
+pub fn exact_sum(world: &SimpleCommunicator, local: impl Iterator<Item = f64> + Clone) -> f64 {
+    use crate::solver::exact_sum::{max_abs, ExactGrid};
+    let m = max_abs(local.clone());
+    // NaN (a non-finite term somewhere) is carried as +inf through the max
+    let m = max_f64(world, if m.is_nan() { f64::INFINITY } else { m });
+    if !m.is_finite() {
+        return f64::NAN;
+    }
+    let grid = ExactGrid::new(m);
+    let part = grid.partial(local);
+    let words = [part as u64, (part >> 64) as u64];
+    let mut all = vec![0u64; 2 * world.size() as usize];
+    world.all_gather_into(&words[..], &mut all[..]);
+    let total = all
+        .chunks(2)
+        .map(|w| ((w[1] as i128) << 64) | w[0] as i128)
+        .fold(0i128, i128::wrapping_add);
+    grid.to_f64(total)
+}
+
+/// Euclidean norm of a distributed vector from this rank's entries, independent of the rank
+/// count ([`exact_sum`] of the squares). Collective.
+pub fn exact_norm2(world: &SimpleCommunicator, local: &[f64]) -> f64 {
+    exact_sum(world, local.iter().map(|v| v * v)).sqrt()
+}

@@ -470,10 +470,16 @@ pub trait SnesProblem {
     fn jacobian(&mut self, x: &Vector) -> Result<bool, PetscError>;
     /// The matrix the Jacobian is assembled into (also the preconditioning matrix).
     fn jacobian_matrix(&self) -> &Matrix;
-    /// Convergence test after `it` Newton iterations with residual norm `fnorm` and the
-    /// iterations of the last linear solve: `Some(true)` converged, `Some(false)` diverged,
+    /// Convergence test after `it` Newton iterations with PETSc's residual norm `fnorm` (the
+    /// problem may use its own, rank-count-independent norm of the last residual instead) and
+    /// the iterations of the last linear solve: `Some(true)` converged, `Some(false)` diverged,
     /// `None` go on.
     fn converged(&mut self, it: u32, fnorm: f64, linear_iterations: u32) -> Option<bool>;
+    /// The line search's merit function at `x`, ‖F(x)‖², or `Ok(None)` when F cannot be
+    /// evaluated there. Given to SNES as its objective, so that the `l2` and `bt` line searches
+    /// rest on the problem's own (rank-count-independent) norm rather than on `VecNorm`, whose
+    /// partial sums depend on the partition.
+    fn objective(&mut self, x: &Vector) -> Result<Option<f64>, PetscError>;
 }
 
 /// How a SNES solve ended.
@@ -497,24 +503,34 @@ pub struct Snes {
     raw: p::SNES,
     comm: mpi::ffi::MPI_Comm,
     settings: (u32, f64, u32, bool),
+    /// The global DOFs in the mesh's order, for the canonical direct solver (`None`: cfrd's
+    /// Krylov defaults).
+    canonical: Option<Vec<i32>>,
+    /// The canonical direct solver's state (the PC shell's context); dropped after the SNES.
+    canonical_lu: Option<Box<CanonicalLu>>,
 }
 
 impl Snes {
-    /// A Newton solver with at most `max_it` iterations and cfrd's Krylov defaults (see
-    /// `configure_ksp`) for the linearized systems; then PETSc options are applied.
+    /// A Newton solver with at most `max_it` iterations and, for the linearized systems,
+    /// either cfrd's Krylov defaults (see `configure_ksp`) or, given the global DOFs in the
+    /// mesh's order (`canonical`), the canonical direct solver ([`CanonicalLu`]); then PETSc
+    /// options are applied.
     pub fn new(
         petsc: &Petsc,
         max_it: u32,
         rtol: f64,
         ksp_max_it: u32,
         symmetric: bool,
+        canonical: Option<Vec<i32>>,
     ) -> Result<Snes, PetscError> {
         let mut raw: p::SNES = null_mut();
         call!(SNESCreate(petsc.comm, &mut raw))?;
-        let s = Snes {
+        let mut s = Snes {
             raw,
             comm: petsc.comm,
             settings: (max_it, rtol, ksp_max_it, symmetric),
+            canonical,
+            canonical_lu: None,
         };
         s.configure()?;
         Ok(s)
@@ -533,12 +549,17 @@ impl Snes {
             p::SNESDestroy(&mut self.raw);
         }
         self.raw = raw;
+        // the old shell context goes only now that no PC refers to it
+        self.canonical_lu = None;
         self.configure()
     }
 
     /// cfrd's settings on a new SNES.
-    fn configure(&self) -> Result<(), PetscError> {
-        let s = self;
+    fn configure(&mut self) -> Result<(), PetscError> {
+        if let Some(canonical) = &self.canonical {
+            self.canonical_lu = Some(CanonicalLu::new(canonical.clone())?);
+        }
+        let s = &*self;
         let (max_it, rtol, ksp_max_it, symmetric) = self.settings;
         call!(SNESSetType(s.raw, p::SNESNEWTONLS.as_ptr() as *const c_char))?;
         // the problem's convergence test decides; only the iteration limit is SNES's own
@@ -555,7 +576,10 @@ impl Snes {
         ))?;
         let mut ksp: p::KSP = null_mut();
         call!(SNESGetKSP(s.raw, &mut ksp))?;
-        configure_ksp(ksp, rtol, ksp_max_it, symmetric)?;
+        match &s.canonical_lu {
+            Some(lu) => lu.install(ksp)?,
+            None => configure_ksp(ksp, rtol, ksp_max_it, symmetric)?,
+        }
         // options (scene and command line) are applied here, so a bad one is an input error
         call!(SNESSetFromOptions(s.raw))
     }
@@ -578,6 +602,7 @@ impl Snes {
             ctx,
             None
         ))?;
+        call!(SNESSetObjective(self.raw, Some(snes_objective::<P>), ctx))?;
         call!(SNESSolve(self.raw, null_mut(), x.raw))?;
         let (mut reason, mut its) = (0, 0);
         call!(SNESGetConvergedReason(self.raw, &mut reason))?;
@@ -605,6 +630,229 @@ impl Drop for Snes {
         unsafe {
             p::SNESDestroy(&mut self.raw);
         }
+    }
+}
+
+unsafe extern "C" fn snes_objective<P: SnesProblem>(
+    snes: p::SNES,
+    x: p::Vec,
+    obj: *mut p::PetscReal,
+    ctx: *mut std::ffi::c_void,
+) -> p::PetscErrorCode {
+    // SAFETY: as in snes_residual; `obj` is a valid out-pointer.
+    let problem = unsafe { &mut *(ctx as *mut P) };
+    let value = match problem.objective(&borrowed(x)) {
+        Ok(Some(v)) => v,
+        // an infinite merit value makes the line search back off (or fail)
+        Ok(None) => f64::INFINITY,
+        Err(e) => return e.code.max(CALLBACK_FAILED),
+    };
+    let _ = snes;
+    unsafe {
+        *obj = value;
+    }
+    0
+}
+
+/// A direct solver whose result does not depend on the rank count (a preconditioner shell
+/// under `preonly`): at every Jacobian the distributed matrix is gathered on every rank,
+/// permuted into the mesh's own DOF order (node by node in input order, the `canonical` list
+/// giving the PETSc index of each) and factored by PETSc's sequential LU; each solve gathers
+/// the right-hand side in the same order and keeps the owned part of the solution.
+///
+/// The gathered, permuted matrix is the same bit for bit at any rank count (the assembly is
+/// rank-count independent, see `solver::discretization`), and so are its fill-reducing ordering,
+/// its factors and every solution: with it a staged elasto-plastic run gives the same result
+/// on 1 and 2 ranks, not merely the same to a tolerance. Its cost is that of a serial direct
+/// solve on every rank, so it suits meshes up to some 10⁵ DOFs. Its options take the prefix
+/// `canonical_` (e.g. `-canonical_pc_factor_mat_ordering_type rcm`).
+pub struct CanonicalLu {
+    canonical: Vec<i32>,
+    is_all: p::IS,
+    is_perm: p::IS,
+    /// The gathered matrix (array of one, from `MatCreateSubMatrices`).
+    sub: *mut p::Mat,
+    /// The permuted matrix the factorization works on (kept, so its symbolic factorization is
+    /// reused).
+    canon: p::Mat,
+    ksp: p::KSP,
+    gather: Option<Gather>,
+    /// For every owned entry: its position in the canonical order.
+    local_pos: Vec<usize>,
+    solution: Option<Vector>,
+}
+
+impl CanonicalLu {
+    fn new(canonical: Vec<i32>) -> Result<Box<CanonicalLu>, PetscError> {
+        let n = canonical.len() as i32;
+        let mut lu = Box::new(CanonicalLu {
+            canonical,
+            is_all: null_mut(),
+            is_perm: null_mut(),
+            sub: null_mut(),
+            canon: null_mut(),
+            ksp: null_mut(),
+            gather: None,
+            local_pos: Vec::new(),
+            solution: None,
+        });
+        // SAFETY: a constant handle set by MPI_Init.
+        let self_comm = unsafe { mpi::ffi::RSMPI_COMM_SELF };
+        call!(ISCreateStride(self_comm, n, 0, 1, &mut lu.is_all))?;
+        call!(ISCreateGeneral(
+            self_comm,
+            n,
+            lu.canonical.as_ptr(),
+            p::PETSC_COPY_VALUES,
+            &mut lu.is_perm
+        ))?;
+        call!(KSPCreate(self_comm, &mut lu.ksp))?;
+        let prefix = CString::new("canonical_").expect("no NUL");
+        call!(KSPSetOptionsPrefix(lu.ksp, prefix.as_ptr()))?;
+        call!(KSPSetType(lu.ksp, p::KSPPREONLY.as_ptr() as *const c_char))?;
+        let mut pc: p::PC = null_mut();
+        call!(KSPGetPC(lu.ksp, &mut pc))?;
+        call!(PCSetType(pc, p::PCLU.as_ptr() as *const c_char))?;
+        call!(KSPSetFromOptions(lu.ksp))?;
+        Ok(lu)
+    }
+
+    /// Makes `ksp` apply this solver (`preonly` with the shell preconditioner).
+    fn install(&self, ksp: p::KSP) -> Result<(), PetscError> {
+        call!(KSPSetType(ksp, p::KSPPREONLY.as_ptr() as *const c_char))?;
+        let mut pc: p::PC = null_mut();
+        call!(KSPGetPC(ksp, &mut pc))?;
+        call!(PCSetType(pc, p::PCSHELL.as_ptr() as *const c_char))?;
+        let ctx = self as *const CanonicalLu as *mut std::ffi::c_void;
+        call!(PCShellSetContext(pc, ctx))?;
+        call!(PCShellSetSetUp(pc, Some(canonical_lu_setup)))?;
+        call!(PCShellSetApply(pc, Some(canonical_lu_apply)))?;
+        let name = CString::new("canonical LU (mesh DOF order, rank-count independent)").expect("no NUL");
+        call!(PCShellSetName(pc, name.as_ptr()))
+    }
+
+    /// Gathers, permutes and factors the preconditioning matrix of `pc`.
+    fn setup(&mut self, pc: p::PC) -> Result<(), PetscError> {
+        let (mut a, mut pmat): (p::Mat, p::Mat) = (null_mut(), null_mut());
+        call!(PCGetOperators(pc, &mut a, &mut pmat))?;
+        let reuse = if self.sub.is_null() {
+            p::MAT_INITIAL_MATRIX
+        } else {
+            p::MAT_REUSE_MATRIX
+        };
+        call!(MatCreateSubMatrices(
+            pmat,
+            1,
+            &self.is_all,
+            &self.is_all,
+            reuse,
+            &mut self.sub
+        ))?;
+        // B(i, j) = A(canonical[i], canonical[j])
+        let mut b: p::Mat = null_mut();
+        // SAFETY (inside the call): `sub` holds one matrix after MatCreateSubMatrices.
+        call!(MatPermute(*self.sub, self.is_perm, self.is_perm, &mut b))?;
+        if self.canon.is_null() {
+            self.canon = b;
+            call!(KSPSetOperators(self.ksp, self.canon, self.canon))?;
+        } else {
+            let copied = call!(MatCopy(b, self.canon, p::SAME_NONZERO_PATTERN));
+            // SAFETY: created by MatPermute above, destroyed once.
+            unsafe {
+                p::MatDestroy(&mut b);
+            }
+            copied?;
+        }
+        call!(KSPSetUp(self.ksp))?;
+        let mut inner: p::PC = null_mut();
+        call!(KSPGetPC(self.ksp, &mut inner))?;
+        let mut failed: p::PCFailedReason = 0;
+        call!(PCGetFailedReason(inner, &mut failed))?;
+        if failed != 0 {
+            // a zero pivot: the Newton step fails as a linear solve and is cut back
+            call!(PCSetFailedReason(pc, p::PC_SUBPC_ERROR))?;
+        }
+        Ok(())
+    }
+
+    /// y = A⁻¹ x through the canonical factors.
+    fn apply(&mut self, pc: p::PC, x: p::Vec, y: p::Vec) -> Result<(), PetscError> {
+        let (x, mut y) = (borrowed(x), borrowed(y));
+        if self.gather.is_none() {
+            let (lo, hi) = x.ownership_range()?;
+            let mut inverse = vec![0usize; self.canonical.len()];
+            for (i, &g) in self.canonical.iter().enumerate() {
+                inverse[g as usize] = i;
+            }
+            self.local_pos = inverse[lo..hi].to_vec();
+            self.gather = Some(Gather::new(&x, &self.canonical)?);
+            self.solution = Some(Vector::seq(self.canonical.len())?);
+        }
+        let (Some(gather), Some(solution)) = (self.gather.as_mut(), self.solution.as_mut()) else {
+            unreachable!("set above");
+        };
+        let b = gather.gather(&x)?;
+        call!(KSPSolve(self.ksp, b.raw, solution.raw))?;
+        let mut reason = 0;
+        call!(KSPGetConvergedReason(self.ksp, &mut reason))?;
+        if reason < 0 {
+            call!(PCSetFailedReason(pc, p::PC_SUBPC_ERROR))?;
+        }
+        let local_pos = &self.local_pos;
+        solution.read(|s| {
+            y.write(|out| {
+                for (o, &k) in out.iter_mut().zip(local_pos) {
+                    *o = s[k];
+                }
+            })
+        })??;
+        Ok(())
+    }
+}
+
+impl Drop for CanonicalLu {
+    fn drop(&mut self) {
+        // SAFETY: each handle was created once by PETSc (or is null, which the destroy calls
+        // accept) and is destroyed once here.
+        unsafe {
+            if !self.sub.is_null() {
+                p::MatDestroySubMatrices(1, &mut self.sub);
+            }
+            p::MatDestroy(&mut self.canon);
+            p::KSPDestroy(&mut self.ksp);
+            p::ISDestroy(&mut self.is_all);
+            p::ISDestroy(&mut self.is_perm);
+        }
+    }
+}
+
+/// The shell context of `pc` as the canonical solver.
+///
+/// # Safety
+/// `pc` must be a shell installed by [`CanonicalLu::install`], whose context is alive.
+unsafe fn canonical_context<'a>(pc: p::PC) -> Result<&'a mut CanonicalLu, PetscError> {
+    let mut ctx: *mut std::ffi::c_void = null_mut();
+    call!(PCShellGetContext(
+        pc,
+        &mut ctx as *mut *mut std::ffi::c_void as *mut std::ffi::c_void
+    ))?;
+    // SAFETY: the context is the boxed CanonicalLu owned by the Snes (caller's contract).
+    Ok(unsafe { &mut *(ctx as *mut CanonicalLu) })
+}
+
+unsafe extern "C" fn canonical_lu_setup(pc: p::PC) -> p::PetscErrorCode {
+    // SAFETY: installed by CanonicalLu::install with its context.
+    match unsafe { canonical_context(pc) }.and_then(|lu| lu.setup(pc)) {
+        Ok(()) => 0,
+        Err(e) => e.code.max(CALLBACK_FAILED),
+    }
+}
+
+unsafe extern "C" fn canonical_lu_apply(pc: p::PC, x: p::Vec, y: p::Vec) -> p::PetscErrorCode {
+    // SAFETY: installed by CanonicalLu::install with its context.
+    match unsafe { canonical_context(pc) }.and_then(|lu| lu.apply(pc, x, y)) {
+        Ok(()) => 0,
+        Err(e) => e.code.max(CALLBACK_FAILED),
     }
 }
 

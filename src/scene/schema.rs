@@ -241,6 +241,25 @@ pub struct SolverSpec {
     /// (rank 0, to standard error). Default false.
     #[serde(default)]
     pub monitor: bool,
+    /// Linear solver of the Newton corrections: `iterative` (default; CG or GMRES with GAMG,
+    /// PETSc options override) or `canonical_lu`, a sequential LU of the whole system on every
+    /// rank in the mesh's own DOF order, whose results are the same bit for bit at any rank
+    /// count (`linalg::petsc::CanonicalLu`; up to some 10⁵ DOFs).
+    #[serde(default)]
+    pub linear_solver: LinearSolver,
+}
+
+/// The linear solver of the Newton corrections.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum LinearSolver {
+    /// Krylov (CG for symmetric tangents, GMRES otherwise) with algebraic multigrid; results at
+    /// different rank counts agree to the linear tolerance.
+    #[default]
+    Iterative,
+    /// Sequential LU on every rank in the mesh's DOF order: results independent of the rank
+    /// count, bit for bit.
+    CanonicalLu,
 }
 
 fn rtol() -> f64 {
@@ -273,6 +292,7 @@ impl Default for SolverSpec {
             max_cutbacks: max_cutbacks(),
             petsc_options: String::new(),
             monitor: false,
+            linear_solver: LinearSolver::Iterative,
         }
     }
 }

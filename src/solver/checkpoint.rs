@@ -59,7 +59,8 @@ pub const CHECKPOINT_VERSION: u64 = 1;
 pub const CHECKPOINT_FILE: &str = "checkpoint.h5";
 
 /// The state of the static problem on one rank at the end of a stage, in this rank's owned
-/// order (nodes of `Discretization::owned_nodes`, elements of `owned_elements`).
+/// order (nodes of `Discretization::owned_nodes`; elements of `owned_elements` when saved, of
+/// `Discretization::elements`, the evaluated ones, when read back).
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct ProblemState {
     /// Number of completed stages (the next stage has this index).
@@ -250,8 +251,9 @@ pub fn read(
     })();
     let stages_done = agree(&comm, checked)?;
     let node_plan = Redistribution::new(&comm, "nodes", n_nodes, &disc.owned_nodes)?;
-    let element_plan = Redistribution::new(&comm, "elements", n_elements, &disc.owned_elements)?;
-    let (nn, ne) = (disc.owned_nodes.len(), disc.owned_elements.len());
+    // the states of every element this rank evaluates (owned and along the partition boundary)
+    let element_plan = Redistribution::for_reading(&comm, "elements", n_elements, &disc.elements)?;
+    let (nn, ne) = (disc.owned_nodes.len(), disc.elements.len());
     let sized = |name: &str, v: Vec<f64>, want: usize| -> Result<Vec<f64>, IoError> {
         if v.len() == want {
             Ok(v)

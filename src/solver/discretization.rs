@@ -4,6 +4,14 @@
 //! DOF numbering (rank-count independent in meaning, contiguous per rank for PETSc): nodes are
 //! sorted by (owner rank, input index); DOF `3·k + c` is component `c` of the `k`-th node in
 //! that order ([`partition::Partition::dof_node`]). Each rank owns the DOFs of its nodes.
+//!
+//! Rank-count-independent assembly: a rank evaluates every element it owns **and** every
+//! element that touches one of its nodes ([`Discretization::elements`]), and adds to its own
+//! rows only. Each entry of a global vector or matrix is then summed on one rank, over the same
+//! elements in the same (input) order at any rank count, so the assembled system is the same
+//! bit for bit. The price is the evaluation of the elements along the partition boundary on
+//! both sides; their states are kept in step because both ranks integrate them from the same
+//! committed state with the same increment.
 
 use partition::{Cells, Partition};
 
@@ -14,14 +22,20 @@ pub struct Discretization {
     pub rank: usize,
     /// The partition (same on every rank).
     pub partition: Partition,
-    /// Elements this rank owns and assembles, in input order.
+    /// Elements this rank owns (stores in results and checkpoints), in input order.
     pub owned_elements: Vec<u32>,
+    /// Elements this rank evaluates, in input order: the owned ones and every element touching
+    /// an owned node (module docs).
+    pub elements: Vec<u32>,
+    /// Whether each of [`Discretization::elements`] is owned by this rank.
+    pub element_owned: Vec<bool>,
     /// Nodes this rank owns, in input order.
     pub owned_nodes: Vec<u32>,
-    /// Nodes the owned elements touch plus the owned nodes (sorted input indices): the rank's
-    /// local node list, gathered from the distributed vectors.
+    /// Nodes the evaluated elements touch plus the owned nodes (sorted input indices): the
+    /// rank's local node list, gathered from the distributed vectors.
     pub local_nodes: Vec<u32>,
-    /// For every owned element, the positions of its 8 nodes in `local_nodes`.
+    /// For every evaluated element ([`Discretization::elements`]), the positions of its 8 nodes
+    /// in `local_nodes`.
     pub element_local: Vec<[u32; 8]>,
     /// Global (PETSc) DOF index of each local DOF (3 per local node).
     pub local_dofs: Vec<i32>,
@@ -38,15 +52,32 @@ impl Discretization {
     pub fn new(cells: &Cells, n_nodes: usize, partition: Partition, rank: usize) -> Discretization {
         let owned_elements = partition.owned_cells(rank);
         let owned_nodes = partition.owned_nodes(rank);
+        let me = rank as u32;
+        let elements: Vec<u32> = (0..cells.len())
+            .filter(|&c| {
+                partition.cell_part[c] == me
+                    || cells
+                        .nodes(c)
+                        .iter()
+                        .any(|&n| partition.node_owner[n as usize] == me)
+            })
+            .map(|c| c as u32)
+            .collect();
+        let element_owned = elements
+            .iter()
+            .map(|&c| partition.cell_part[c as usize] == me)
+            .collect();
         let mut local_nodes: Vec<u32> = owned_nodes.clone();
-        local_nodes.extend(partition.ghost_nodes(cells, rank));
+        for &c in &elements {
+            local_nodes.extend_from_slice(cells.nodes(c as usize));
+        }
         local_nodes.sort_unstable();
         local_nodes.dedup();
         let mut pos = vec![u32::MAX; n_nodes];
         for (i, &n) in local_nodes.iter().enumerate() {
             pos[n as usize] = i as u32;
         }
-        let element_local = owned_elements
+        let element_local = elements
             .iter()
             .map(|&e| {
                 let nodes = cells.nodes(e as usize);
@@ -65,6 +96,8 @@ impl Discretization {
         Discretization {
             rank,
             owned_elements,
+            elements,
+            element_owned,
             owned_nodes,
             local_nodes,
             element_local,
@@ -79,6 +112,20 @@ impl Discretization {
     /// Global DOF of component `c` of node `n`.
     pub fn dof(&self, n: u32, c: usize) -> i32 {
         3 * self.partition.dof_node[n as usize] as i32 + c as i32
+    }
+
+    /// Whether global DOF `d` is owned by this rank.
+    pub fn owns_dof(&self, d: i32) -> bool {
+        (d as usize).wrapping_sub(self.dof_lo) < self.n_owned_dofs
+    }
+
+    /// The global DOFs in the mesh's own order: entry `3·n + c` is the PETSc index of component
+    /// `c` of node `n` (input index). The same list describes the same unknowns at any rank count.
+    pub fn canonical_dofs(&self) -> Vec<i32> {
+        (0..self.partition.dof_node.len() as u32)
+            .flat_map(|n| (0..3).map(move |c| (n, c)))
+            .map(|(n, c)| self.dof(n, c))
+            .collect()
     }
 
     /// Exact preallocation for the owned rows: for every owned DOF, the number of coupled

@@ -18,9 +18,9 @@ use crate::element::interface_frame::FrameAxes;
 use crate::linalg::petsc::{Gather, Matrix, Petsc, PetscError, Snes, SnesOutcome, SnesProblem, Vector};
 use crate::material::BlockMaterial;
 use crate::mesh::Mesh;
-use crate::parallel::{any_error, sum_f64, sum_u64};
+use crate::parallel::{any_error, exact_norm2, exact_sum, sum_u64};
 use crate::parallel::{any_true, broadcast_vec, max_f64};
-use crate::scene::schema::PlacedNodes;
+use crate::scene::schema::{LinearSolver, PlacedNodes};
 use crate::scene::{Scene, Term};
 use crate::tensor::{Strain6, Stress6};
 use mpi::collective::{CommunicatorCollectives, SystemOperation};
@@ -265,7 +265,7 @@ impl<'a> StaticProblem<'a> {
         // blocks and the block-local numbering of owned elements
         let mut per_block = vec![0usize; mesh.blocks.len()];
         let elem_block: Vec<(usize, usize)> = disc
-            .owned_elements
+            .elements
             .iter()
             .map(|&e| {
                 let b = mesh.elements[e as usize].block as usize;
@@ -292,8 +292,8 @@ impl<'a> StaticProblem<'a> {
                 element: 0,
                 reason: e.reason,
             })?;
-        let mut iface_geo = Vec::with_capacity(disc.owned_elements.len());
-        for &e in &disc.owned_elements {
+        let mut iface_geo = Vec::with_capacity(disc.elements.len());
+        for &e in &disc.elements {
             let el = &mesh.elements[e as usize];
             iface_geo.push(match &scene.block_interface[el.block as usize] {
                 None => None,
@@ -330,16 +330,18 @@ impl<'a> StaticProblem<'a> {
         })?;
         k.set_rigid_body_near_null_space(&coords)?;
         // the full pattern once: every element, placed or not yet, and every diagonal block, so
-        // that placing blocks later never needs a new nonzero (zero entries stay in the pattern)
+        // that placing blocks later never needs a new nonzero (zero entries stay in the pattern);
+        // only owned rows, as in every assembly (module docs of `discretization`)
         let zeros = vec![0.0f64; 576];
         let disc_ref = &disc;
-        for &e in &disc.owned_elements {
-            let rows: Vec<i32> = mesh.elements[e as usize]
+        for &e in &disc.elements {
+            let cols: Vec<i32> = mesh.elements[e as usize]
                 .nodes
                 .iter()
                 .flat_map(|&n| (0..3).map(move |c| disc_ref.dof(n, c)))
                 .collect();
-            k.add_values(&rows, &rows, &zeros)?;
+            let rows: Vec<i32> = cols.iter().copied().filter(|&d| disc.owns_dof(d)).collect();
+            k.add_values(&rows, &cols, &zeros[..24 * rows.len()])?;
         }
         for &n in &disc.owned_nodes {
             let d = [disc.dof(n, 0), disc.dof(n, 1), disc.dof(n, 2)];
@@ -355,16 +357,21 @@ impl<'a> StaticProblem<'a> {
         // the non-associated GP models have non-symmetric tangents: CG only when all are symmetric
         let symmetric = blocks.iter().all(BlockStates::symmetric_tangent);
         // options (scene and command line) are applied here, so a bad one is an input error
+        let canonical = match scene.file.solver.linear_solver {
+            LinearSolver::Iterative => None,
+            LinearSolver::CanonicalLu => Some(disc.canonical_dofs()),
+        };
         let snes = Snes::new(
             petsc,
             scene.file.solver.newton_max_iterations,
             scene.file.solver.rtol,
             scene.file.solver.max_iterations,
             symmetric,
+            canonical,
         )?;
         let mut f_prev = u.duplicate()?;
         f_prev.set_all(0.0)?;
-        let n_owned_elements = disc.owned_elements.len();
+        let n_elements = disc.elements.len();
         let n_owned_nodes = disc.owned_nodes.len();
         Ok(StaticProblem {
             scene,
@@ -377,7 +384,7 @@ impl<'a> StaticProblem<'a> {
             fixed_start: Vec::new(),
             active_block: vec![false; mesh.blocks.len()],
             node_active: vec![false; n_nodes],
-            elem_ref: vec![Vector24::zeros(); n_owned_elements],
+            elem_ref: vec![Vector24::zeros(); n_elements],
             node_offset: vec![[0.0; 3]; n_owned_nodes],
             node_was_active: vec![false; n_owned_nodes],
             stage: 0,
@@ -401,14 +408,17 @@ impl<'a> StaticProblem<'a> {
     /// [`StaticProblem::end_stage`]): everything [`StaticProblem::begin_stage`] of the next stage
     /// and the solve need, in this rank's owned order ([`super::checkpoint`]).
     pub(crate) fn save_state(&self) -> Result<ProblemState, SolveError> {
-        let mut element_states = Vec::with_capacity(self.elem_block.len());
+        let mut element_states = Vec::with_capacity(self.disc.owned_elements.len());
         for (i, &(b, be)) in self.elem_block.iter().enumerate() {
+            if !self.disc.element_owned[i] {
+                continue;
+            }
             let encoded = match &self.blocks[b] {
                 BlockStates::Solid(block) => state_codec::encode_solid(block, be),
                 BlockStates::Interface(block) => state_codec::encode_interface(block, be),
             };
             element_states.push(encoded.map_err(|reason| SolveError::Material {
-                element: self.scene.mesh.elements[self.disc.owned_elements[i] as usize].id,
+                element: self.scene.mesh.elements[self.disc.elements[i] as usize].id,
                 reason,
             })?);
         }
@@ -422,18 +432,21 @@ impl<'a> StaticProblem<'a> {
             elem_ref: self
                 .elem_ref
                 .iter()
-                .map(|v| std::array::from_fn(|k| v[k]))
+                .zip(&self.disc.element_owned)
+                .filter(|(_, &owned)| owned)
+                .map(|(v, _)| std::array::from_fn(|k| v[k]))
                 .collect(),
             element_states,
         })
     }
 
     /// Restores a state saved by [`StaticProblem::save_state`] (possibly under another
-    /// partition: the caller maps it to this rank's owned order). The next call is
+    /// partition: the caller maps it to this rank's owned nodes and evaluated elements,
+    /// [`Discretization::elements`]). The next call is
     /// [`StaticProblem::begin_stage`] of stage `state.stages_done`. Local; fails on wrong lengths
     /// or states that do not decode for the block's model (naming the element).
     pub(crate) fn restore_state(&mut self, state: &ProblemState) -> Result<(), String> {
-        let (nn, ne) = (self.disc.owned_nodes.len(), self.disc.owned_elements.len());
+        let (nn, ne) = (self.disc.owned_nodes.len(), self.disc.elements.len());
         let lens = [
             ("active blocks", state.active_block.len(), self.active_block.len()),
             ("node flags", state.node_active.len(), self.node_active.len()),
@@ -462,7 +475,7 @@ impl<'a> StaticProblem<'a> {
             decoded.map_err(|m| {
                 format!(
                     "element {}: {m}",
-                    self.scene.mesh.elements[self.disc.owned_elements[i] as usize].id
+                    self.scene.mesh.elements[self.disc.elements[i] as usize].id
                 )
             })?;
         }
@@ -509,7 +522,7 @@ impl<'a> StaticProblem<'a> {
             }
         }
         let u_loc: Vec<f64> = self.gather.gather(&self.u)?.read(|s| s.to_vec())?;
-        for (i, &e) in self.disc.owned_elements.iter().enumerate() {
+        for (i, &e) in self.disc.elements.iter().enumerate() {
             if newly[mesh.elements[e as usize].block as usize] {
                 let loc = &self.disc.element_local[i];
                 self.elem_ref[i] = Vector24::from_fn(|r, _| u_loc[3 * loc[r / 3] as usize + r % 3]);
@@ -563,18 +576,19 @@ impl<'a> StaticProblem<'a> {
     fn external_force(&self, lambda: f64, f: &mut Vector) -> Result<(), SolveError> {
         let mesh = &self.scene.mesh;
         f.set_all(0.0)?;
+        // placed elements this rank evaluates; terms add to owned rows only, in the scene's
+        // fixed order (rank-count independent, see `discretization`)
         let mut owned_elem = vec![false; mesh.elements.len()];
-        for &e in &self.disc.owned_elements {
+        for &e in &self.disc.elements {
             owned_elem[e as usize] = self.active_block[mesh.elements[e as usize].block as usize];
         }
         let add = |e: usize, fe: &Vector24, f: &mut Vector| -> Result<(), SolveError> {
-            f.set_values(&self.element_dofs(e), fe.as_slice(), true)?;
-            Ok(())
+            add_owned_rows(&self.disc, f, &self.element_dofs(e), fe.as_slice())
         };
         for term in &self.scene.stages[self.stage].terms {
             match term {
                 Term::Gravity { g } => {
-                    for &e in &self.disc.owned_elements {
+                    for &e in &self.disc.elements {
                         let e = e as usize;
                         if !owned_elem[e] || mesh.is_interface(e) {
                             continue;
@@ -645,7 +659,7 @@ impl<'a> StaticProblem<'a> {
         let mesh = &self.scene.mesh;
         let mut f0 = f.duplicate()?;
         f0.set_all(0.0)?;
-        for (i, &e) in self.disc.owned_elements.iter().enumerate() {
+        for (i, &e) in self.disc.elements.iter().enumerate() {
             let (b, _) = self.elem_block[i];
             let BlockStates::Solid(block) = &self.blocks[b] else {
                 continue;
@@ -657,10 +671,11 @@ impl<'a> StaticProblem<'a> {
             let geo = Hex8Geometry::new(&mesh.element_coords(e)).map_err(|_| SolveError::Geometry {
                 element: mesh.elements[e].id,
             })?;
-            f0.set_values(
+            add_owned_rows(
+                &self.disc,
+                &mut f0,
                 &self.element_dofs(e),
                 block.placement_force(&geo).as_slice(),
-                true,
             )?;
         }
         f0.assemble()?;
@@ -682,11 +697,13 @@ impl<'a> StaticProblem<'a> {
         }
         let mut rows = [0i32; 24];
         let mut kt = [0.0f64; 576];
-        let (mut diag_sum, mut diag_n) = (0.0f64, 0u64);
+        // stiffness diagonals of the owned elements, for the Dirichlet scaling (an exact sum:
+        // the same at any rank count)
+        let mut diagonals: Vec<f64> = Vec::new();
         // the element loop stops at the first local failure, but the collective assembly calls
         // below run on every rank whatever happened here (no rank may skip a collective)
         let mut local = Ok(());
-        for (i, &e) in self.disc.owned_elements.iter().enumerate() {
+        for (i, &e) in self.disc.elements.iter().enumerate() {
             let e = e as usize;
             let (b, be) = self.elem_block[i];
             if !self.active_block[b] {
@@ -728,20 +745,34 @@ impl<'a> StaticProblem<'a> {
                     break;
                 }
             };
-            f_int.set_values(&rows, fe.as_slice(), true)?;
+            add_owned_rows(&self.disc, f_int, &rows, fe.as_slice())?;
             if let Some(ke) = ke {
-                diag_sum += ke.diagonal().iter().map(|v| v.abs()).sum::<f64>();
-                diag_n += 24;
-                // nalgebra is column-major: the transpose's storage is the row-major block
-                kt.copy_from_slice(ke.transpose().as_slice());
-                self.k.add_values(&rows, &rows, &kt)?;
+                if self.disc.element_owned[i] {
+                    diagonals.extend(ke.diagonal().iter().map(|v| v.abs()));
+                }
+                // the owned rows, row-major (nalgebra is column-major)
+                let mut owned_rows = [0i32; 24];
+                let mut m = 0;
+                for (r, &d) in rows.iter().enumerate() {
+                    if self.disc.owns_dof(d) {
+                        owned_rows[m] = d;
+                        for c in 0..24 {
+                            kt[24 * m + c] = ke[(r, c)];
+                        }
+                        m += 1;
+                    }
+                }
+                if m > 0 {
+                    self.k.add_values(&owned_rows[..m], &rows, &kt[..24 * m])?;
+                }
             }
         }
         f_int.assemble()?;
         if want_k {
             self.k.assemble()?;
             let world = SimpleCommunicator::world();
-            let (s, n) = (sum_f64(&world, diag_sum), sum_u64(&world, diag_n));
+            let n = sum_u64(&world, diagonals.len() as u64);
+            let s = exact_sum(&world, diagonals.iter().copied());
             self.dirichlet_diag = if n > 0 && s > 0.0 { s / n as f64 } else { 1.0 };
         }
         local
@@ -848,6 +879,7 @@ impl<'a> StaticProblem<'a> {
         })?;
         let mut r = self.u.duplicate()?;
         let f_int = self.u.duplicate()?;
+        let f_work = self.u.duplicate()?;
         let t0 = Instant::now();
         let mut snes = self
             .snes
@@ -861,6 +893,9 @@ impl<'a> StaticProblem<'a> {
             rows,
             lambda,
             ref_norm: 1e-300,
+            residual_norm: f64::NAN,
+            residual_at: None,
+            f_work,
             failure: None,
             report,
             assembly_seconds: 0.0,
@@ -978,9 +1013,11 @@ impl<'a> StaticProblem<'a> {
     pub fn interface_counts(&self) -> InterfaceCounts {
         let (mut points, mut open, mut slipping) = (0u64, 0u64, 0u64);
         for (i, &(b, be)) in self.elem_block.iter().enumerate() {
-            if let (true, BlockStates::Interface(block), Some(geo)) =
-                (self.active_block[b], &self.blocks[b], &self.iface_geo[i])
-            {
+            if let (true, BlockStates::Interface(block), Some(geo)) = (
+                self.active_block[b] && self.disc.element_owned[i],
+                &self.blocks[b],
+                &self.iface_geo[i],
+            ) {
                 let o = block.output(be);
                 points += geo.area_w.len() as u64;
                 open += o.open_points as u64;
@@ -1033,7 +1070,10 @@ impl<'a> StaticProblem<'a> {
         }
         let u_loc: Vec<f64> = self.gather.gather(&self.u)?.read(|s| s.to_vec())?;
         out.elements = self.disc.owned_elements.clone();
-        for (i, &e) in self.disc.owned_elements.iter().enumerate() {
+        for (i, &e) in self.disc.elements.iter().enumerate() {
+            if !self.disc.element_owned[i] {
+                continue;
+            }
             let (b, be) = self.elem_block[i];
             let loc = &self.disc.element_local[i];
             let ue = Vector24::from_fn(|k, _| u_loc[3 * loc[k / 3] as usize + k % 3]) - self.elem_ref[i];
@@ -1097,6 +1137,12 @@ struct NewtonStep<'s, 'a> {
     lambda: f64,
     /// max(‖f_ext‖, ‖f_int‖) of the last residual evaluation.
     ref_norm: f64,
+    /// ‖F‖ of the last residual evaluation (exact sum: the same at any rank count).
+    residual_norm: f64,
+    /// This rank's entries of the x of the last residual evaluation (`None`: it failed).
+    residual_at: Option<Vec<f64>>,
+    /// Work vector of the line search's merit function.
+    f_work: Vector,
     /// Message of the last failed material update.
     failure: Option<String>,
     report: &'s mut SolveReport,
@@ -1124,8 +1170,11 @@ impl NewtonStep<'_, '_> {
     }
 }
 
-impl SnesProblem for NewtonStep<'_, '_> {
-    fn residual(&mut self, x: &Vector, f: &mut Vector) -> Result<bool, PetscError> {
+impl NewtonStep<'_, '_> {
+    /// F(x) into `f` and its norm, with the norms of f_ext and f_int (exact sums, so every
+    /// Newton decision is the same at any rank count). `Ok(false)`: a material update failed.
+    fn evaluate_residual(&mut self, x: &Vector, f: &mut Vector) -> Result<bool, PetscError> {
+        self.residual_at = None;
         if !self.evaluate_at(x, false)? {
             return Ok(false);
         }
@@ -1138,8 +1187,34 @@ impl SnesProblem for NewtonStep<'_, '_> {
                 s[l] = d * (xs[l] - v);
             }
         })?;
-        self.ref_norm = self.f_ext.norm2()?.max(self.f_int.norm2()?).max(1e-300);
+        let world = SimpleCommunicator::world();
+        let norm = |v: &Vector| v.read(|s| exact_norm2(&world, s));
+        self.ref_norm = norm(&self.f_ext)?.max(norm(&self.f_int)?).max(1e-300);
+        self.residual_norm = norm(f)?;
+        self.residual_at = Some(xs);
         Ok(true)
+    }
+}
+
+impl SnesProblem for NewtonStep<'_, '_> {
+    fn residual(&mut self, x: &Vector, f: &mut Vector) -> Result<bool, PetscError> {
+        self.evaluate_residual(x, f)
+    }
+
+    fn objective(&mut self, x: &Vector) -> Result<Option<f64>, PetscError> {
+        // the line search first asks at the current iterate, where F is already known
+        let known = match &self.residual_at {
+            Some(at) => x.read(|s| s == at.as_slice())?,
+            None => false,
+        };
+        let world = SimpleCommunicator::world();
+        if !any_true(&world, !known) {
+            return Ok(Some(self.residual_norm * self.residual_norm));
+        }
+        let mut f = std::mem::replace(&mut self.f_work, x.duplicate()?);
+        let ok = self.evaluate_residual(x, &mut f);
+        self.f_work = f;
+        Ok(ok?.then_some(self.residual_norm * self.residual_norm))
     }
 
     fn jacobian(&mut self, x: &Vector) -> Result<bool, PetscError> {
@@ -1155,8 +1230,9 @@ impl SnesProblem for NewtonStep<'_, '_> {
         &self.problem.k
     }
 
-    fn converged(&mut self, it: u32, fnorm: f64, linear_iterations: u32) -> Option<bool> {
-        let rel = fnorm / self.ref_norm;
+    fn converged(&mut self, it: u32, _fnorm: f64, linear_iterations: u32) -> Option<bool> {
+        // the exact norm of the last residual (at the iterate SNES accepted), not VecNorm's
+        let rel = self.residual_norm / self.ref_norm;
         if it > 0 {
             self.report.ksp_iterations.push(linear_iterations);
             self.last_linear_iterations = linear_iterations;
@@ -1179,4 +1255,27 @@ impl SnesProblem for NewtonStep<'_, '_> {
         }
         (it > 0 && rel <= opts.newton_tol).then_some(true)
     }
+}
+
+/// Adds the entries of an element vector (global DOFs `rows`) that fall in this rank's rows to
+/// `v`; the other entries are added by their owner, which evaluates the element too
+/// (rank-count-independent assembly, see `discretization`).
+fn add_owned_rows(
+    disc: &Discretization,
+    v: &mut Vector,
+    rows: &[i32],
+    values: &[f64],
+) -> Result<(), SolveError> {
+    let (mut r, mut x, mut m) = ([0i32; 24], [0.0f64; 24], 0);
+    for (&d, &value) in rows.iter().zip(values) {
+        if disc.owns_dof(d) {
+            r[m] = d;
+            x[m] = value;
+            m += 1;
+        }
+    }
+    if m > 0 {
+        v.set_values(&r[..m], &x[..m], true)?;
+    }
+    Ok(())
 }
