@@ -13,24 +13,25 @@ declare -A mesh=(
   [fine]="{ fill_layers: 86, elements_per_panel: 2, rockfill_elements: 14, impoundment_stages: 6 }"
 )
 # the stiff interfaces and joints (k2 1e10 Pa/m, 2.5e10 Pa/m) stall the default GAMG preconditioner
-# once the slab is placed; a direct solver is used where it is affordable. The medium mesh uses
-# PETSc's own LU on every rank (redundant): measured on its first two fill stages on 2 ranks,
-# 0.18 s per factorization, where MUMPS had not finished the first stage in 2.5 minutes; on the
-# coarse mesh's first stage MUMPS took 12.1 s for 73 factorizations, the redundant LU 1.1 s
-# (the coarse runs in the README were measured with MUMPS and keep it)
+# once the slab is placed; a direct solver is used where it is affordable. The coarse and medium
+# meshes use the canonical LU (solver.linear_solver: canonical_lu): PETSc's own sequential LU on
+# every rank in the mesh's DOF order, whose results are the same bit for bit on 1, 2 or 3 ranks
+# (the 1-vs-2-rank comparison of the README). PETSc's LU is also the fastest direct solver here:
+# on the coarse mesh's first stage MUMPS took 12.1 s for 73 factorizations, PETSc's LU 1.1 s; on
+# the medium mesh 0.18 s per factorization, where MUMPS had not finished its first stage in 2.5
+# minutes. The fine mesh (256k DOFs) keeps the iterative default.
 # Newton tolerance 1e-5 (spec section 8.1 gives 1e-4 as typical): the GP substepping (STOL 1e-4)
 # leaves an out-of-balance noise of about STOL x stress x face area, measured on the coarse
 # mesh's first fill layer as 3e3 N at a cushion corner node, 2e-6 of the layer's weight; the
 # default 1e-8 lies below that floor and every step would be cut back. At most 15 Newton
-# iterations: a step that stalls is cut back sooner; in the coarse runs (README) the converged steps
-# took 3-15 iterations, median 6-7
+# iterations: a step that stalls is cut back sooner.
 declare -A solver=(
-  [coarse]="solver: { newton_tol: 1.0e-5, newton_max_iterations: 15, petsc_options: \"-ksp_type preonly -pc_type lu -pc_factor_mat_solver_type mumps\" }"
-  [medium]="solver: { newton_tol: 1.0e-5, newton_max_iterations: 15, petsc_options: \"-ksp_type preonly -pc_type redundant -redundant_pc_type lu\" }"
+  [coarse]="solver: { newton_tol: 1.0e-5, newton_max_iterations: 15, linear_solver: canonical_lu }"
+  [medium]="solver: { newton_tol: 1.0e-5, newton_max_iterations: 15, linear_solver: canonical_lu }"
   [fine]="solver: { newton_tol: 1.0e-5, newton_max_iterations: 15 }"
 )
 declare -A note=(
-  [coarse]="coarse mesh (panels 30 m, wider than the seed's 12-18 m; about 7 minutes on 2 cores)"
+  [coarse]="coarse mesh (panels 30 m, wider than the seed's 12-18 m)"
   [medium]="medium mesh (panels 15 m)"
   [fine]="fine mesh (86 fill layers as in the seed, about the paper's 74 521 elements)"
 )

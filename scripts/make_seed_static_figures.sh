@@ -11,8 +11,8 @@
 # Usage: scripts/make_seed_static_figures.sh [RUN_DIR]
 #   RUN_DIR (default: a new temporary directory) keeps the runs; when RUN_DIR/<model>_<n>
 #   already holds a finished run (summary.json), that run is not repeated.
-# Needs about 45 minutes on 2 cores. 1-rank runs use PETSc's own LU (MUMPS is 15x slower on
-# this size); 2-rank runs use the scenes' MUMPS.
+# The scenes use the canonical LU (solver.linear_solver: canonical_lu), so the 1- and 2-rank
+# results are expected to be identical.
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -28,9 +28,7 @@ models=(hyperbolic mohr_coulomb gp_interface)
 run() { # model ranks
     local m=$1 n=$2 out="$runs/$1_$2"
     [ -f "$out/summary.json" ] && return 0
-    local extra=()
-    [ "$n" = 1 ] && extra=(-pc_factor_mat_solver_type petsc)
-    /usr/bin/time -v mpirun -n "$n" "$bin" run "inputs/scenes/seed_coarse_$m.yaml" -o "$out" "${extra[@]}" \
+    /usr/bin/time -v mpirun -n "$n" "$bin" run "inputs/scenes/seed_coarse_$m.yaml" -o "$out" \
         > "$runs/$1_$2.log" 2>&1
 }
 for m in "${models[@]}"; do run "$m" 2; done
