@@ -24,6 +24,9 @@ pub struct ModelStates<M: SolidModel> {
     pub model: M,
     /// 8 Gauss points per element, element-major.
     pub store: QpStore<M::State>,
+    /// The tangent of every trial state (same layout as the store), so that a Jacobian at the
+    /// point of the last residual evaluation needs no second integration.
+    pub trial_tangents: Vec<Tangent6>,
 }
 
 /// The solid models a block can use, each with its states.
@@ -67,6 +70,7 @@ impl SolidBlock {
                 SolidBlock::Elastic(ModelStates {
                     model,
                     store: QpStore::new(n, init),
+                    trial_tangents: vec![Tangent6::default(); n],
                 })
             }
             SolidParams::RockfillGp(p) => {
@@ -76,6 +80,7 @@ impl SolidBlock {
                 SolidBlock::RockfillGp(ModelStates {
                     model,
                     store: QpStore::new(n, init),
+                    trial_tangents: vec![Tangent6::default(); n],
                 })
             }
         })
@@ -91,6 +96,13 @@ impl SolidBlock {
         want_k: bool,
     ) -> Result<ElementResponse, MaterialError> {
         with_states!(self, ms => evaluate_element(ms, e, geo, d_u, want_k))
+    }
+
+    /// f_int and K of element `e` from its current trial states and their tangents, without
+    /// integrating the material: the response [`SolidBlock::evaluate`] gave for the last
+    /// increment, now with K.
+    pub fn evaluate_trial(&self, e: usize, geo: &Hex8Geometry) -> ElementResponse {
+        with_states!(self, ms => trial_response(ms, e, geo))
     }
 
     /// Stress σ₀ (Pa) of a point when its element is placed: zero for the elastic model, the
@@ -150,6 +162,7 @@ fn evaluate_element<M: SolidModel>(
         let up = ms.model.update(&ms.store.committed[i], &d_eps[q])?;
         sig[q] = M::stress(&up.state);
         tan[q] = up.tangent;
+        ms.trial_tangents[i] = up.tangent;
         ms.store.trial[i] = up.state;
     }
     let mean = sig.iter().fold(Stress6::default(), |a, s| {
@@ -160,6 +173,21 @@ fn evaluate_element<M: SolidModel>(
         k: want_k.then(|| geo.stiffness(&tan)),
         mean_stress: mean,
     })
+}
+
+fn trial_response<M: SolidModel>(ms: &ModelStates<M>, e: usize, geo: &Hex8Geometry) -> ElementResponse {
+    let range = e * HEX_GAUSS_POINTS..(e + 1) * HEX_GAUSS_POINTS;
+    let sig: [Stress6; HEX_GAUSS_POINTS] =
+        std::array::from_fn(|q| M::stress(&ms.store.trial[range.start + q]));
+    let tan: [Tangent6; HEX_GAUSS_POINTS] = std::array::from_fn(|q| ms.trial_tangents[range.start + q]);
+    let mean = sig.iter().fold(Stress6::default(), |a, s| {
+        Stress6(a.0 + s.0 / HEX_GAUSS_POINTS as f64)
+    });
+    ElementResponse {
+        f_int: geo.internal_force(&sig),
+        k: Some(geo.stiffness(&tan)),
+        mean_stress: mean,
+    }
 }
 
 fn mean_committed_stress<M: SolidModel>(ms: &ModelStates<M>, e: usize) -> Stress6 {

@@ -685,6 +685,20 @@ impl<'a> StaticProblem<'a> {
 
     /// Updates the trial states for the current `u` and assembles f_int and (optionally) K.
     fn assemble(&mut self, f_int: &mut Vector, want_k: bool) -> Result<(), SolveError> {
+        self.assemble_with(f_int, want_k, false)
+    }
+
+    /// [`StaticProblem::assemble`]; with `trial_is_current` the solid trial states are known to
+    /// be those of the current `u` (the last evaluation was there), so f_int and K of the solid
+    /// elements come from them and their stored tangents without a second integration (the
+    /// same values, since an update is a pure function of the committed state and the
+    /// increment).
+    fn assemble_with(
+        &mut self,
+        f_int: &mut Vector,
+        want_k: bool,
+        trial_is_current: bool,
+    ) -> Result<(), SolveError> {
         let mesh = &self.scene.mesh;
         let u_loc: Vec<f64> = self.gather.gather(&self.u)?.read(|s| s.to_vec())?;
         let u0_loc: Vec<f64> = self
@@ -726,7 +740,12 @@ impl<'a> StaticProblem<'a> {
                         });
                         break;
                     };
-                    block.evaluate(be, &geo, &d_u, want_k).map(|r| (r.f_int, r.k))
+                    if trial_is_current {
+                        let r = block.evaluate_trial(be, &geo);
+                        Ok((r.f_int, r.k.filter(|_| want_k)))
+                    } else {
+                        block.evaluate(be, &geo, &d_u, want_k).map(|r| (r.f_int, r.k))
+                    }
                 }
                 BlockStates::Interface(block) => {
                     let geo = self.iface_geo[i]
@@ -1152,11 +1171,18 @@ struct NewtonStep<'s, 'a> {
 
 impl NewtonStep<'_, '_> {
     /// Sets u = x and assembles f_int (and K if `want_k`) there; a material failure on any rank
-    /// is reported on all (collective).
-    fn evaluate_at(&mut self, x: &Vector, want_k: bool) -> Result<bool, PetscError> {
+    /// is reported on all (collective). With `trial_is_current` the solid trial states are
+    /// already those of x ([`StaticProblem::assemble_with`]).
+    fn evaluate_at(&mut self, x: &Vector, want_k: bool, trial_is_current: bool) -> Result<bool, PetscError> {
+        if !trial_is_current {
+            // the trial states move to x: they are no longer those of the last residual
+            self.residual_at = None;
+        }
         self.problem.u.copy_from(x)?;
         let t0 = Instant::now();
-        let assembled = self.problem.assemble(&mut self.f_int, want_k);
+        let assembled = self
+            .problem
+            .assemble_with(&mut self.f_int, want_k, trial_is_current);
         let dt = t0.elapsed().as_secs_f64();
         self.report.assembly_seconds += dt;
         self.assembly_seconds += dt;
@@ -1175,7 +1201,7 @@ impl NewtonStep<'_, '_> {
     /// Newton decision is the same at any rank count). `Ok(false)`: a material update failed.
     fn evaluate_residual(&mut self, x: &Vector, f: &mut Vector) -> Result<bool, PetscError> {
         self.residual_at = None;
-        if !self.evaluate_at(x, false)? {
+        if !self.evaluate_at(x, false, false)? {
             return Ok(false);
         }
         f.copy_from(&self.f_int)?;
@@ -1218,7 +1244,14 @@ impl SnesProblem for NewtonStep<'_, '_> {
     }
 
     fn jacobian(&mut self, x: &Vector) -> Result<bool, PetscError> {
-        if !self.evaluate_at(x, true)? {
+        // SNES asks for J where the line search left its last residual: the trial states are
+        // those of x already, and need no second integration
+        let known = match &self.residual_at {
+            Some(at) => x.read(|s| s == at.as_slice())?,
+            None => false,
+        };
+        let current = !any_true(&SimpleCommunicator::world(), !known);
+        if !self.evaluate_at(x, true, current)? {
             return Ok(false);
         }
         let d = self.problem.dirichlet_diag;
