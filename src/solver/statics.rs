@@ -6,6 +6,13 @@
 //! Every iterate integrates the material from the committed state with the total step
 //! increment (spec §8.1); the states are committed only at convergence. Dirichlet DOFs are kept
 //! in the system (block size 3 for algebraic multigrid) with unit rows and columns.
+//!
+//! Rank-count independence: the residual, the tangent and the external forces are assembled
+//! row by row on the owning rank over the same elements in the same order at any rank count
+//! (`discretization`); the convergence test, the line search (through the SNES objective) and
+//! the Dirichlet scaling use exact sums (`exact_sum`); with
+//! [`LinearSolver::CanonicalLu`] the corrections are too, so a run is the same bit for bit on
+//! any number of ranks, whatever its load path.
 
 use super::checkpoint::ProblemState;
 use super::discretization::Discretization;
