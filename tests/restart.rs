@@ -2,7 +2,7 @@
 //! generalized-plasticity rockfill column built in 4 layers is stopped (or killed) after a stage
 //! and restarted from its last checkpoint; the final displacements and stresses are bitwise
 //! those of the uninterrupted run. A restart on 1 rank of a 2-rank checkpoint agrees to the
-//! solver tolerances. Checkpoints of another scene, truncated files and results files are
+//! solver tolerances with the iterative solver, and bitwise with the canonical LU. Checkpoints of another scene, truncated files and results files are
 //! refused with an input error (exit 2) that names the file.
 
 mod common;
@@ -99,9 +99,14 @@ fn run_ok(np: usize, dir: &Path, args: &[&str]) {
 
 /// The column scene run uninterrupted on 2 ranks (`full/`) and stopped after stage 2 (`part/`).
 fn full_and_stopped_after_stage_two() -> tempfile::TempDir {
+    full_and_stopped_with(&scene(2150.0, 2))
+}
+
+/// [`full_and_stopped_after_stage_two`] for the scene text `yaml`.
+fn full_and_stopped_with(yaml: &str) -> tempfile::TempDir {
     let dir = tempdir();
     let d = dir.path();
-    std::fs::write(d.join("col.yaml"), scene(2150.0, 2)).unwrap();
+    std::fs::write(d.join("col.yaml"), yaml).unwrap();
     run_ok(2, d, &["run", "col.yaml", "-o", "full", "-q"]);
     run_ok(
         2,
@@ -234,6 +239,34 @@ fn restart_on_one_rank_from_a_two_rank_checkpoint() {
         println!("1-rank restart {field}: max |Δ| = {max:.3e} of max |value| {scale:.3e}");
         assert!(max <= 1e-8 * scale, "{field}: max |Δ| {max:e} of {scale:e}");
     }
+}
+
+/// With the canonical LU (`linear_solver: canonical_lu`) the results do not depend on the rank
+/// count, so a 1-rank restart of a 2-rank checkpoint ends bitwise where the uninterrupted 2-rank
+/// run ends.
+#[test]
+fn canonical_restart_on_one_rank_is_bitwise_exact() {
+    let yaml = scene(2150.0, 2).replace(
+        "solver: { load_steps: 2 }",
+        "solver: { load_steps: 2, linear_solver: canonical_lu }",
+    );
+    assert!(yaml.contains("canonical_lu"));
+    let dir = full_and_stopped_with(&yaml);
+    let d = dir.path();
+    run_ok(
+        1,
+        d,
+        &[
+            "run",
+            "col.yaml",
+            "-o",
+            "one",
+            "-q",
+            "--restart",
+            "part/checkpoint.h5",
+        ],
+    );
+    assert_bitwise(&d.join("full/results.h5"), &d.join("one/results.h5"), 2);
 }
 
 #[test]
