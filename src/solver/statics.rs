@@ -585,9 +585,9 @@ impl<'a> StaticProblem<'a> {
         f.set_all(0.0)?;
         // placed elements this rank evaluates; terms add to owned rows only, in the scene's
         // fixed order (rank-count independent, see `discretization`)
-        let mut owned_elem = vec![false; mesh.elements.len()];
+        let mut placed = vec![false; mesh.elements.len()];
         for &e in &self.disc.elements {
-            owned_elem[e as usize] = self.active_block[mesh.elements[e as usize].block as usize];
+            placed[e as usize] = self.active_block[mesh.elements[e as usize].block as usize];
         }
         let add = |e: usize, fe: &Vector24, f: &mut Vector| -> Result<(), SolveError> {
             add_owned_rows(&self.disc, f, &self.element_dofs(e), fe.as_slice())
@@ -597,7 +597,7 @@ impl<'a> StaticProblem<'a> {
                 Term::Gravity { g } => {
                     for &e in &self.disc.elements {
                         let e = e as usize;
-                        if !owned_elem[e] || mesh.is_interface(e) {
+                        if !placed[e] || mesh.is_interface(e) {
                             continue;
                         }
                         let rho = self.scene.block_materials[mesh.elements[e].block as usize].density();
@@ -606,7 +606,7 @@ impl<'a> StaticProblem<'a> {
                 }
                 Term::Pressure { faces, value } => {
                     for face in &mesh.face_sets[faces] {
-                        if owned_elem[face.element as usize] {
+                        if placed[face.element as usize] {
                             let e = face.element as usize;
                             let fe = face_pressure_load(
                                 &mesh.element_coords(e),
@@ -623,7 +623,7 @@ impl<'a> StaticProblem<'a> {
                     unit_weight,
                 } => {
                     for face in &mesh.face_sets[faces] {
-                        if owned_elem[face.element as usize] {
+                        if placed[face.element as usize] {
                             let e = face.element as usize;
                             let p = face
                                 .nodes
@@ -1204,6 +1204,16 @@ impl NewtonStep<'_, '_> {
 }
 
 impl NewtonStep<'_, '_> {
+    /// Whether `x` is (on every rank) the iterate of the last successful residual evaluation,
+    /// whose trial states and norm are still current. Collective.
+    fn at_last_residual(&self, x: &Vector) -> Result<bool, PetscError> {
+        let here = match &self.residual_at {
+            Some(at) => x.read(|s| s == at.as_slice())?,
+            None => false,
+        };
+        Ok(!any_true(&SimpleCommunicator::world(), !here))
+    }
+
     /// F(x) into `f` and its norm, with the norms of f_ext and f_int (exact sums, so every
     /// Newton decision is the same at any rank count). `Ok(false)`: a material update failed.
     fn evaluate_residual(&mut self, x: &Vector, f: &mut Vector) -> Result<bool, PetscError> {
@@ -1236,12 +1246,7 @@ impl SnesProblem for NewtonStep<'_, '_> {
 
     fn objective(&mut self, x: &Vector) -> Result<Option<f64>, PetscError> {
         // the line search first asks at the current iterate, where F is already known
-        let known = match &self.residual_at {
-            Some(at) => x.read(|s| s == at.as_slice())?,
-            None => false,
-        };
-        let world = SimpleCommunicator::world();
-        if !any_true(&world, !known) {
+        if self.at_last_residual(x)? {
             return Ok(Some(self.residual_norm * self.residual_norm));
         }
         let mut f = std::mem::replace(&mut self.f_work, x.duplicate()?);
@@ -1253,11 +1258,7 @@ impl SnesProblem for NewtonStep<'_, '_> {
     fn jacobian(&mut self, x: &Vector) -> Result<bool, PetscError> {
         // SNES asks for J where the line search left its last residual: the trial states are
         // those of x already, and need no second integration
-        let known = match &self.residual_at {
-            Some(at) => x.read(|s| s == at.as_slice())?,
-            None => false,
-        };
-        let current = !any_true(&SimpleCommunicator::world(), !known);
+        let current = self.at_last_residual(x)?;
         if !self.evaluate_at(x, true, current)? {
             return Ok(false);
         }
