@@ -184,3 +184,71 @@ impl Discretization {
         (d_nnz, o_nnz)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A row of `n` unit hexes along x (nodes (i, j, k), i in 0..=n, j, k in 0..=1).
+    fn hex_row(n: usize) -> (Cells, usize) {
+        let id = |i: usize, j: usize, k: usize| (i * 4 + j * 2 + k) as u32;
+        let mut cells = Cells::default();
+        for i in 0..n {
+            cells.push(&[
+                id(i, 0, 0),
+                id(i + 1, 0, 0),
+                id(i + 1, 1, 0),
+                id(i, 1, 0),
+                id(i, 0, 1),
+                id(i + 1, 0, 1),
+                id(i + 1, 1, 1),
+                id(i, 1, 1),
+            ]);
+        }
+        (cells, (n + 1) * 4)
+    }
+
+    /// Every DOF row is owned by exactly one rank, and that rank evaluates every element that
+    /// touches it: the assembled rows are complete without any off-rank contribution.
+    #[test]
+    fn each_row_is_assembled_completely_by_its_owner() {
+        let (cells, nn) = hex_row(7);
+        for part in [vec![0, 0, 0, 1, 1, 1, 1], vec![0, 1, 0, 1, 2, 2, 1]] {
+            let nparts = *part.iter().max().unwrap() as usize + 1;
+            let p = Partition::new(&cells, nn, nparts, part.clone());
+            let discs: Vec<_> = (0..nparts)
+                .map(|r| Discretization::new(&cells, nn, p.clone(), r))
+                .collect();
+            let mut owners = vec![0; 3 * nn];
+            for d in &discs {
+                for dof in 0..3 * nn as i32 {
+                    if d.owns_dof(dof) {
+                        owners[dof as usize] += 1;
+                    }
+                }
+                for c in 0..cells.len() {
+                    let touches = cells.nodes(c).iter().any(|&n| d.owns_dof(d.dof(n, 0)));
+                    let evaluated = d.elements.contains(&(c as u32));
+                    assert_eq!(
+                        evaluated,
+                        touches || part[c] as usize == d.rank,
+                        "cell {c}, {part:?}"
+                    );
+                }
+                let owned: Vec<u32> = d
+                    .elements
+                    .iter()
+                    .zip(&d.element_owned)
+                    .filter(|(_, &o)| o)
+                    .map(|(&e, _)| e)
+                    .collect();
+                assert_eq!(owned, d.owned_elements);
+                // the canonical list names every DOF once
+                let mut canon = d.canonical_dofs();
+                canon.sort_unstable();
+                assert_eq!(canon, (0..3 * nn as i32).collect::<Vec<_>>());
+            }
+            assert!(owners.iter().all(|&k| k == 1), "{owners:?}");
+        }
+    }
+}
