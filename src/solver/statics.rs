@@ -905,7 +905,7 @@ impl<'a> StaticProblem<'a> {
         })?;
         let mut r = self.u.duplicate()?;
         let f_int = self.u.duplicate()?;
-        let f_work = self.u.duplicate()?;
+        let f_last = Some(self.u.duplicate()?);
         let t0 = Instant::now();
         let mut snes = self
             .snes
@@ -921,7 +921,7 @@ impl<'a> StaticProblem<'a> {
             ref_norm: 1e-300,
             residual_norm: f64::NAN,
             residual_at: None,
-            f_work,
+            f_last,
             failure: None,
             report,
             assembly_seconds: 0.0,
@@ -1167,8 +1167,8 @@ struct NewtonStep<'s, 'a> {
     residual_norm: f64,
     /// This rank's entries of the x of the last residual evaluation (`None`: it failed).
     residual_at: Option<Vec<f64>>,
-    /// Work vector of the line search's merit function.
-    f_work: Vector,
+    /// F of the last residual evaluation (at `residual_at`); `None` only while it is filled.
+    f_last: Option<Vector>,
     /// Message of the last failed material update.
     failure: Option<String>,
     report: &'s mut SolveReport,
@@ -1214,6 +1214,14 @@ impl NewtonStep<'_, '_> {
         Ok(!any_true(&SimpleCommunicator::world(), !here))
     }
 
+    /// F(x) into the kept vector of the last residual (see [`NewtonStep::evaluate_residual`]).
+    fn evaluate_last(&mut self, x: &Vector) -> Result<bool, PetscError> {
+        let mut f = self.f_last.take().expect("F of the last residual is kept");
+        let ok = self.evaluate_residual(x, &mut f);
+        self.f_last = Some(f);
+        ok
+    }
+
     /// F(x) into `f` and its norm, with the norms of f_ext and f_int (exact sums, so every
     /// Newton decision is the same at any rank count). `Ok(false)`: a material update failed.
     fn evaluate_residual(&mut self, x: &Vector, f: &mut Vector) -> Result<bool, PetscError> {
@@ -1241,18 +1249,21 @@ impl NewtonStep<'_, '_> {
 
 impl SnesProblem for NewtonStep<'_, '_> {
     fn residual(&mut self, x: &Vector, f: &mut Vector) -> Result<bool, PetscError> {
-        self.evaluate_residual(x, f)
+        // a line search that accepts the point of its last merit evaluation asks for F there
+        // again: it is known
+        if !self.at_last_residual(x)? && !self.evaluate_last(x)? {
+            return Ok(false);
+        }
+        f.copy_from(self.f_last.as_ref().expect("F of the last residual is kept"))?;
+        Ok(true)
     }
 
     fn objective(&mut self, x: &Vector) -> Result<Option<f64>, PetscError> {
         // the line search first asks at the current iterate, where F is already known
-        if self.at_last_residual(x)? {
-            return Ok(Some(self.residual_norm * self.residual_norm));
+        if !self.at_last_residual(x)? && !self.evaluate_last(x)? {
+            return Ok(None);
         }
-        let mut f = std::mem::replace(&mut self.f_work, x.duplicate()?);
-        let ok = self.evaluate_residual(x, &mut f);
-        self.f_work = f;
-        Ok(ok?.then_some(self.residual_norm * self.residual_norm))
+        Ok(Some(self.residual_norm * self.residual_norm))
     }
 
     fn jacobian(&mut self, x: &Vector) -> Result<bool, PetscError> {
