@@ -11,6 +11,9 @@
 # Usage: scripts/make_seed_static_figures.sh [RUN_DIR]
 #   RUN_DIR (default: a new temporary directory) keeps the runs; when RUN_DIR/<model>_<n>
 #   already holds a finished run (summary.json), that run is not repeated.
+#   MEDIUM=1 also runs the medium hyperbolic scene on 2 ranks (RUN_DIR/medium_hyperbolic_2,
+#   about an hour on 2 cores), copies its figures as seed_medium_hyperbolic_fig*.png and adds
+#   its row to seed_static_runs.csv.
 # The scenes use the canonical LU (solver.linear_solver: canonical_lu), so the 1- and 2-rank
 # results are expected to be identical.
 set -euo pipefail
@@ -33,6 +36,10 @@ run() { # model ranks
 }
 for m in "${models[@]}"; do run "$m" 2; done
 for m in "${models[@]}"; do run "$m" 1; done
+if [ "${MEDIUM:-0}" = 1 ] && [ ! -f "$runs/medium_hyperbolic_2/summary.json" ]; then
+    /usr/bin/time -v mpirun -n 2 "$bin" run inputs/scenes/seed_medium_hyperbolic.yaml \
+        -o "$runs/medium_hyperbolic_2" > "$runs/medium_hyperbolic_2.log" 2>&1
+fi
 
 figures="$root/scripts/figures"
 mkdir -p "$figures"
@@ -43,22 +50,30 @@ for m in "${models[@]}"; do
         cp "$f" "$figures/seed_static_${m}_$(basename "$f")"
     done
 done
+if [ -f "$runs/medium_hyperbolic_2/summary.json" ]; then
+    for f in "$runs/medium_hyperbolic_2"/fig*.png; do
+        cp "$f" "$figures/seed_medium_hyperbolic_$(basename "$f")"
+    done
+fi
 {
     echo "model,ranks,wall_s,peak_rss_mib,newton_iterations,steps,cutbacks,interface_points,open,slipping,max_newton_per_step"
-    for m in "${models[@]}"; do
-        for n in 2 1; do
-            python3 - "$runs/${m}_$n/summary.json" "$runs/${m}_$n.log" "$m" "$n" <<'PY'
-import json, re, sys
+    row() { # run-directory label ranks
+        python3 - "$runs/$1/summary.json" "$2" "$3" <<'PY'
+import json, sys
 s = json.load(open(sys.argv[1]))
-log = open(sys.argv[2]).read()
 wall = s["total_seconds"]
 rss = max(s["peak_memory_bytes_per_rank"]) / 2**20
-print(f'{sys.argv[3]},{sys.argv[4]},{wall:.0f},{rss:.0f},{s["newton_iterations"]},{s["steps"]},'
+print(f'{sys.argv[2]},{sys.argv[3]},{wall:.0f},{rss:.0f},{s["newton_iterations"]},{s["steps"]},'
       f'{s["cutbacks"]},{s["interface_points"]},{s["interface_open"]},{s["interface_slipping"]},'
       f'{max(s["newton_per_step"])}')
 PY
-        done
+    }
+    for m in "${models[@]}"; do
+        for n in 2 1; do row "${m}_$n" "$m" "$n"; done
     done
+    if [ -f "$runs/medium_hyperbolic_2/summary.json" ]; then
+        row medium_hyperbolic_2 medium_hyperbolic 2
+    fi
 } > "$figures/seed_static_runs.csv"
 {
     for m in "${models[@]}"; do
