@@ -1181,16 +1181,8 @@ fn numerical_tangent_is_consistent_with_large_increments() {
 // ---------------------------------------------------------------------------------------------
 // Property tests
 
-/// A random shear path from activation (steps of up to ±0.5 mm, normal jump fixed or small).
-fn run_path(m: &GpInterface, sn: f64, path: &[(f64, f64, f64)]) -> GpInterfaceState {
-    let mut st = m.init_state(sn).expect("init");
-    for &(a, b, c) in path {
-        st = m.update(&st, &Local3::new(a, b, c)).expect("path").state;
-    }
-    st
-}
-
-/// [`run_path`] that returns the first failure instead of panicking.
+/// A random shear path from activation (steps of up to ±0.5 mm, normal jump fixed or small);
+/// the first failure of the update is returned.
 fn try_run_path(
     m: &GpInterface,
     sn: f64,
