@@ -70,6 +70,26 @@ impl Cells {
     pub fn nodes(&self, c: usize) -> &[u32] {
         &self.cell_nodes[self.cell_ptr[c]..self.cell_ptr[c + 1]]
     }
+    /// A row of `n` unit hexahedra along x and its number of nodes: node (i, j, k), i in 0..=n,
+    /// j and k in 0..=1, has index 4i + 2j + k. A small mesh for tests and examples.
+    pub fn hex_row(n: usize) -> (Cells, usize) {
+        let id = |i: usize, j: usize, k: usize| (i * 4 + j * 2 + k) as u32;
+        let mut cells = Cells::default();
+        for i in 0..n {
+            cells.push(&[
+                id(i, 0, 0),
+                id(i + 1, 0, 0),
+                id(i + 1, 1, 0),
+                id(i, 1, 0),
+                id(i, 0, 1),
+                id(i + 1, 0, 1),
+                id(i + 1, 1, 1),
+                id(i, 1, 1),
+            ]);
+        }
+        (cells, (n + 1) * 4)
+    }
+
     /// Appends a cell.
     pub fn push(&mut self, nodes: &[u32]) {
         if self.cell_ptr.is_empty() {
@@ -306,28 +326,9 @@ impl PartitionFile {
 mod tests {
     use super::*;
 
-    /// A row of `n` unit hexes along x: nodes (i, j, k) with i in 0..=n, j,k in 0..=1.
-    fn hex_row(n: usize) -> (Cells, usize) {
-        let id = |i: usize, j: usize, k: usize| (i * 4 + j * 2 + k) as u32;
-        let mut cells = Cells::default();
-        for i in 0..n {
-            cells.push(&[
-                id(i, 0, 0),
-                id(i + 1, 0, 0),
-                id(i + 1, 1, 0),
-                id(i, 1, 0),
-                id(i, 0, 1),
-                id(i + 1, 0, 1),
-                id(i + 1, 1, 1),
-                id(i, 1, 1),
-            ]);
-        }
-        (cells, (n + 1) * 4)
-    }
-
     #[test]
     fn ownership_is_consistent_and_numbering_contiguous() {
-        let (cells, nn) = hex_row(6);
+        let (cells, nn) = Cells::hex_row(6);
         let part = vec![0, 0, 0, 1, 1, 1];
         let p = Partition::new(&cells, nn, 2, part);
         // nodes of the shared face x = 3 go to the lower rank
@@ -344,7 +345,7 @@ mod tests {
     #[cfg(feature = "metis")]
     #[test]
     fn metis_partition_is_balanced_and_deterministic() {
-        let (cells, nn) = hex_row(40);
+        let (cells, nn) = Cells::hex_row(40);
         let a = partition_elements(&cells, nn, 2).unwrap();
         let b = partition_elements(&cells, nn, 2).unwrap();
         assert_eq!(a, b);
@@ -357,7 +358,7 @@ mod tests {
 
     #[test]
     fn partition_file_round_trip_and_mismatch() {
-        let (cells, nn) = hex_row(4);
+        let (cells, nn) = Cells::hex_row(4);
         let dir = std::env::temp_dir().join(format!("cfrd-part-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let path = dir.join("p.json");
@@ -370,7 +371,7 @@ mod tests {
         );
         let err = PartitionFile::read(&path, &cells, nn, 3).unwrap_err().to_string();
         assert!(err.contains("made for 2 ranks"), "{err}");
-        let (other, nn2) = hex_row(5);
+        let (other, nn2) = Cells::hex_row(5);
         let err = PartitionFile::read(&path, &other, nn2, 2)
             .unwrap_err()
             .to_string();

@@ -189,30 +189,11 @@ impl Discretization {
 mod tests {
     use super::*;
 
-    /// A row of `n` unit hexes along x (nodes (i, j, k), i in 0..=n, j, k in 0..=1).
-    fn hex_row(n: usize) -> (Cells, usize) {
-        let id = |i: usize, j: usize, k: usize| (i * 4 + j * 2 + k) as u32;
-        let mut cells = Cells::default();
-        for i in 0..n {
-            cells.push(&[
-                id(i, 0, 0),
-                id(i + 1, 0, 0),
-                id(i + 1, 1, 0),
-                id(i, 1, 0),
-                id(i, 0, 1),
-                id(i + 1, 0, 1),
-                id(i + 1, 1, 1),
-                id(i, 1, 1),
-            ]);
-        }
-        (cells, (n + 1) * 4)
-    }
-
     /// Every DOF row is owned by exactly one rank, and that rank evaluates every element that
     /// touches it: the assembled rows are complete without any off-rank contribution.
     #[test]
     fn each_row_is_assembled_completely_by_its_owner() {
-        let (cells, nn) = hex_row(7);
+        let (cells, nn) = Cells::hex_row(7);
         for part in [vec![0, 0, 0, 1, 1, 1, 1], vec![0, 1, 0, 1, 2, 2, 1]] {
             let nparts = *part.iter().max().unwrap() as usize + 1;
             let p = Partition::new(&cells, nn, nparts, part.clone());
