@@ -19,7 +19,9 @@ declare -A mesh=(
 # (the 1-vs-2-rank comparison of the README). PETSc's LU is also the fastest direct solver here:
 # on the coarse mesh's first stage MUMPS took 12.1 s for 73 factorizations, PETSc's LU 1.1 s; on
 # the medium mesh 0.18 s per factorization, where MUMPS had not finished its first stage in 2.5
-# minutes. The fine mesh (256k DOFs) keeps the iterative default.
+# minutes. The fine mesh (256k DOFs) is solved iteratively with BoomerAMG (-pc_type hypre): on 2
+# ranks the default GAMG failed in the first fill stage (PC failed, SUBPC_ERROR; with
+# -pc_gamg_threshold 0 in the third), while BoomerAMG passed stages 1-3 in about 4 minutes.
 # Newton tolerance 1e-5 (spec section 8.1 gives 1e-4 as typical): the GP substepping (STOL 1e-4)
 # leaves an out-of-balance noise of about STOL x stress x face area, measured on the coarse
 # mesh's first fill layer as 3e3 N at a cushion corner node, 2e-6 of the layer's weight; the
@@ -37,7 +39,7 @@ declare -A mesh=(
 declare -A solver=(
   [coarse]="solver: { newton_tol: 1.0e-5, newton_max_iterations: 15, load_steps: 8, linear_solver: canonical_lu }"
   [medium]="solver: { newton_tol: 1.0e-5, newton_max_iterations: 15, load_steps: 8, linear_solver: canonical_lu }"
-  [fine]="solver: { newton_tol: 1.0e-5, newton_max_iterations: 15, load_steps: 8 }"
+  [fine]="solver: { newton_tol: 1.0e-5, newton_max_iterations: 15, load_steps: 8, petsc_options: \"-pc_type hypre\" }"
 )
 declare -A note=(
   [coarse]="coarse mesh (panels 30 m, wider than the seed's 12-18 m)"

@@ -179,6 +179,7 @@ pub fn run_scene(
     let n_stages = scene.stages.len();
     let has_interfaces = scene.block_interface.iter().any(Option::is_some);
     let mut failure = None;
+    let mut stages_written = 0usize;
     for (k, stage) in scene.stages.iter().enumerate().skip(first_stage) {
         say(&format!(
             "stage {}/{n_stages} '{}': {} load step(s)",
@@ -217,6 +218,7 @@ pub fn run_scene(
             code: EXIT_SOLVER,
             message: format!("writing results: {m}"),
         })?;
+        stages_written += 1;
         if checkpoints {
             let t0 = Instant::now();
             let written = checkpoint::write(world, &ckpt, scene, &problem, &report);
@@ -246,22 +248,34 @@ pub fn run_scene(
         code: EXIT_SOLVER,
         message: format!("writing results: {m}"),
     })?;
-    if let Some(spec) = &scene.file.output.profiles {
-        // rank 0 reads the closed results file back (serial HDF5) and writes the tables and plots
-        let written = if rank == 0 {
-            write_profiles_from_results(scene, spec, &h5, &out_dir)
-        } else {
-            Ok(Vec::new())
-        };
-        let files = any_error(world, written).map_err(|m| RunFailure {
-            code: EXIT_SOLVER,
-            message: format!("writing the profiles: {m}"),
-        })?;
-        say(&format!(
-            "profiles: {} file(s) in {}",
-            files.len(),
-            out_dir.display()
-        ));
+    // the profiles need at least one completed stage; a failure to write them never hides the
+    // failure of a stage
+    match &scene.file.output.profiles {
+        Some(_) if stages_written == 0 => say("profiles: not written, no stage completed"),
+        Some(spec) => {
+            // rank 0 reads the closed results file back (serial HDF5) and writes the tables and
+            // plots
+            let written = if rank == 0 {
+                write_profiles_from_results(scene, spec, &h5, &out_dir)
+            } else {
+                Ok(Vec::new())
+            };
+            match any_error(world, written) {
+                Ok(files) => say(&format!(
+                    "profiles: {} file(s) in {}",
+                    files.len(),
+                    out_dir.display()
+                )),
+                Err(m) => {
+                    let stage = failure.as_ref().map(|f| format!("{f}; ")).unwrap_or_default();
+                    return Err(RunFailure {
+                        code: EXIT_SOLVER,
+                        message: format!("{stage}writing the profiles: {m}"),
+                    });
+                }
+            }
+        }
+        None => {}
     }
     if let Some(m) = failure {
         return Err(RunFailure {

@@ -83,10 +83,12 @@ fn a_failing_step_is_cut_back_and_completes() {
 #[test]
 fn a_step_that_cannot_be_completed_is_reported() {
     let dir = tempdir();
+    // with the seed-figure outputs asked for: no stage completed, so there is nothing to plot,
+    // and the report is the stage's failure, not a complaint about the missing results
     let text_scene = scene(1).replace(
         "newton_max_iterations: 1",
         "newton_max_iterations: 1, max_cutbacks: 2",
-    );
+    ) + "output: { profiles: { probes: [] } }\n";
     std::fs::write(dir.path().join("fail.yaml"), text_scene).unwrap();
     let o = cfrd_mpi(2, dir.path(), &["run", "fail.yaml", "-o", "out"]);
     let msg = text(&o);
@@ -95,5 +97,7 @@ fn a_step_that_cannot_be_completed_is_reported() {
         msg.contains("failed after 2 cut-back(s)") && msg.contains("last converged state is λ = 0.000000"),
         "{msg}"
     );
+    assert!(msg.contains("profiles: not written, no stage completed"), "{msg}");
+    assert!(!msg.contains("writing the profiles"), "{msg}");
     assert!(!msg.contains("panicked"), "{msg}");
 }
