@@ -165,13 +165,18 @@ fn evaluate_element<M: SolidModel>(
         ms.trial_tangents[i] = up.tangent;
         ms.store.trial[i] = up.state;
     }
-    let mean = sig.iter().fold(Stress6::default(), |a, s| {
-        Stress6(a.0 + s.0 / HEX_GAUSS_POINTS as f64)
-    });
+    let mean = mean_of(&sig);
     Ok(ElementResponse {
         f_int: geo.internal_force(&sig),
         k: want_k.then(|| geo.stiffness(&tan)),
         mean_stress: mean,
+    })
+}
+
+/// Average of the Gauss-point stresses of an element.
+fn mean_of(sig: &[Stress6; HEX_GAUSS_POINTS]) -> Stress6 {
+    sig.iter().fold(Stress6::default(), |a, s| {
+        Stress6(a.0 + s.0 / HEX_GAUSS_POINTS as f64)
     })
 }
 
@@ -180,9 +185,7 @@ fn trial_response<M: SolidModel>(ms: &ModelStates<M>, e: usize, geo: &Hex8Geomet
     let sig: [Stress6; HEX_GAUSS_POINTS] =
         std::array::from_fn(|q| M::stress(&ms.store.trial[range.start + q]));
     let tan: [Tangent6; HEX_GAUSS_POINTS] = std::array::from_fn(|q| ms.trial_tangents[range.start + q]);
-    let mean = sig.iter().fold(Stress6::default(), |a, s| {
-        Stress6(a.0 + s.0 / HEX_GAUSS_POINTS as f64)
-    });
+    let mean = mean_of(&sig);
     ElementResponse {
         f_int: geo.internal_force(&sig),
         k: Some(geo.stiffness(&tan)),
