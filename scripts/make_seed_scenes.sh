@@ -16,10 +16,17 @@ declare -A mesh=(
 # once the slab is placed; a direct solver is used where it is affordable. The coarse and medium
 # meshes use the canonical LU (solver.linear_solver: canonical_lu): PETSc's own sequential LU on
 # every rank in the mesh's DOF order, whose results are the same bit for bit on 1, 2 or 3 ranks
-# (the 1-vs-2-rank comparison of the README). PETSc's LU is also the fastest direct solver here:
-# on the coarse mesh's first stage MUMPS took 12.1 s for 73 factorizations, PETSc's LU 1.1 s; on
-# the medium mesh 0.18 s per factorization, where MUMPS had not finished its first stage in 2.5
-# minutes. The fine mesh (256k DOFs) is solved iteratively with BoomerAMG (-pc_type hypre): on 2
+# (the 1-vs-2-rank comparison of the README). On the coarse mesh PETSc's own LU is the fastest
+# direct solver (its first stage: MUMPS 12.1 s for 73 factorizations with the reference BLAS,
+# PETSc's LU 1.1 s). The medium mesh factors with MUMPS
+# (-canonical_pc_factor_mat_solver_type mumps) on OpenBLAS (libopenblas0-serial): restarted
+# after its stage 24 (fill_024, 2 ranks), PETSc's LU did 29 Newton iterations in 200 s (95 % of
+# the time in the factorization), MUMPS on the reference BLAS 18 in 120 s, MUMPS on OpenBLAS 99
+# in 120 s (UMFPACK 44, SuperLU 5; MUMPS distributed over the 2 ranks, not canonical, 91 in
+# 100 s); these runs factored the whole matrix, the constrained and unplaced DOFs included. The
+# canonical LU now splits those rows off (linalg::petsc::CanonicalLu), which keeps the
+# factorization to the placed mesh and makes MUMPS's results the same on 1 and 2 ranks too.
+# The fine mesh (256k DOFs) is solved iteratively with BoomerAMG (-pc_type hypre): on 2
 # ranks the default GAMG failed in the first fill stage (PC failed, SUBPC_ERROR; with
 # -pc_gamg_threshold 0 in the third), while BoomerAMG passed stages 1-3 in about 4 minutes.
 # Newton tolerance 1e-5 (spec section 8.1 gives 1e-4 as typical): the GP substepping (STOL 1e-4)
@@ -38,7 +45,7 @@ declare -A mesh=(
 # path-dependent load path more closely (the seed places its fill in 86 steps).
 declare -A solver=(
   [coarse]="solver: { newton_tol: 1.0e-5, newton_max_iterations: 15, load_steps: 8, linear_solver: canonical_lu }"
-  [medium]="solver: { newton_tol: 1.0e-5, newton_max_iterations: 15, load_steps: 8, linear_solver: canonical_lu }"
+  [medium]="solver: { newton_tol: 1.0e-5, newton_max_iterations: 15, load_steps: 8, linear_solver: canonical_lu, petsc_options: \"-canonical_pc_factor_mat_solver_type mumps\" }"
   [fine]="solver: { newton_tol: 1.0e-5, newton_max_iterations: 15, load_steps: 8, petsc_options: \"-pc_type hypre\" }"
 )
 declare -A note=(

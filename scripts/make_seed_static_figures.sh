@@ -11,9 +11,9 @@
 # Usage: scripts/make_seed_static_figures.sh [RUN_DIR]
 #   RUN_DIR (default: a new temporary directory) keeps the runs; when RUN_DIR/<model>_<n>
 #   already holds a finished run (summary.json), that run is not repeated.
-#   MEDIUM=1 also runs the medium hyperbolic scene on 2 ranks (RUN_DIR/medium_hyperbolic_2,
-#   about an hour on 2 cores), copies its figures as seed_medium_hyperbolic_fig*.png and adds
-#   its row to seed_static_runs.csv.
+#   MEDIUM=1 also runs the three medium scenes on 2 ranks (RUN_DIR/medium_<model>_2, each some
+#   10-20 minutes on 2 cores), overlays their slab profiles as seed_medium_slab.png, copies
+#   their figures as seed_medium_<model>_fig*.png and adds their rows to seed_static_runs.csv.
 # The scenes use the canonical LU (solver.linear_solver: canonical_lu), so the 1- and 2-rank
 # results are expected to be identical.
 set -euo pipefail
@@ -36,10 +36,17 @@ run() { # model ranks
 }
 for m in "${models[@]}"; do run "$m" 2; done
 for m in "${models[@]}"; do run "$m" 1; done
-if [ "${MEDIUM:-0}" = 1 ] && [ ! -f "$runs/medium_hyperbolic_2/summary.json" ]; then
-    /usr/bin/time -v mpirun -n 2 "$bin" run inputs/scenes/seed_medium_hyperbolic.yaml \
-        -o "$runs/medium_hyperbolic_2" > "$runs/medium_hyperbolic_2.log" 2>&1
+if [ "${MEDIUM:-0}" = 1 ]; then
+    for m in "${models[@]}"; do
+        [ -f "$runs/medium_${m}_2/summary.json" ] && continue
+        /usr/bin/time -v mpirun -n 2 "$bin" run "inputs/scenes/seed_medium_$m.yaml" \
+            -o "$runs/medium_${m}_2" > "$runs/medium_${m}_2.log" 2>&1
+    done
 fi
+medium=()
+for m in "${models[@]}"; do
+    [ -f "$runs/medium_${m}_2/summary.json" ] && medium+=("$m")
+done
 
 figures="$root/scripts/figures"
 mkdir -p "$figures"
@@ -50,10 +57,14 @@ for m in "${models[@]}"; do
         cp "$f" "$figures/seed_static_${m}_$(basename "$f")"
     done
 done
-if [ -f "$runs/medium_hyperbolic_2/summary.json" ]; then
-    for f in "$runs/medium_hyperbolic_2"/fig*.png; do
-        cp "$f" "$figures/seed_medium_hyperbolic_$(basename "$f")"
+for m in "${medium[@]}"; do
+    for f in "$runs/medium_${m}_2"/fig*.png; do
+        cp "$f" "$figures/seed_medium_${m}_$(basename "$f")"
     done
+done
+if [ ${#medium[@]} -eq 3 ]; then
+    "$bin" overlay hyperbolic="$runs/medium_hyperbolic_2" mohr_coulomb="$runs/medium_mohr_coulomb_2" \
+        gp_interface="$runs/medium_gp_interface_2" -o "$figures/seed_medium_slab.png"
 fi
 {
     echo "model,ranks,wall_s,peak_rss_mib,newton_iterations,steps,cutbacks,interface_points,open,slipping,max_newton_per_step"
@@ -71,9 +82,9 @@ PY
     for m in "${models[@]}"; do
         for n in 2 1; do row "${m}_$n" "$m" "$n"; done
     done
-    if [ -f "$runs/medium_hyperbolic_2/summary.json" ]; then
-        row medium_hyperbolic_2 medium_hyperbolic 2
-    fi
+    for m in "${medium[@]}"; do
+        row "medium_${m}_2" "medium_$m" 2
+    done
 } > "$figures/seed_static_runs.csv"
 {
     for m in "${models[@]}"; do

@@ -657,28 +657,52 @@ unsafe extern "C" fn snes_objective<P: SnesProblem>(
 /// A direct solver whose result does not depend on the rank count (a preconditioner shell
 /// under `preonly`): at every Jacobian the distributed matrix is gathered on every rank,
 /// permuted into the mesh's own DOF order (node by node in input order, the `canonical` list
-/// giving the PETSc index of each) and factored by PETSc's sequential LU; each solve gathers
-/// the right-hand side in the same order and keeps the owned part of the solution.
+/// giving the PETSc index of each), its decoupled rows are split off and the rest is factored
+/// by a sequential LU; each solve gathers the right-hand side in the same order and keeps the
+/// owned part of the solution.
+///
+/// Decoupled rows are those with no nonzero off the diagonal in their row or column: the
+/// constrained DOFs (their rows and columns are zeroed, `Matrix::zero_rows_columns_only`) and
+/// the nodes of fill not yet placed. Their solution is a division; the factorization sees only
+/// the placed part of the mesh, and its symbolic factorization is reused while that part stays
+/// the same (within a stage).
+///
+/// The factorization is PETSc's own sequential LU unless the options choose another package:
+/// `-canonical_pc_factor_mat_solver_type mumps` (the medium seed scenes use it) factors with
+/// MUMPS, which with an optimized BLAS (`libopenblas0-serial`, installed by
+/// `ci/install-deps.sh`) was 5.5 times faster than PETSc's LU on the medium seed dam (35,151
+/// DOFs, README "Seed dam status"). With the decoupled rows split off both give the same results
+/// bit for bit on 1 and 2 ranks (tests `cfrd_dam`); without the split, MUMPS's 1-rank solves
+/// differed from its 2-rank ones in the last bits (measured), which the path-dependent
+/// plasticity carried to 1e-3 in the stresses.
 ///
 /// The gathered, permuted matrix is the same bit for bit at any rank count (the assembly is
-/// rank-count independent, see `solver::discretization`), and so are its fill-reducing ordering,
-/// its factors and every solution: with it a staged elasto-plastic run gives the same result
-/// on 1 and 2 ranks, not merely the same to a tolerance. Its cost is that of a serial direct
-/// solve on every rank, so it suits meshes up to some 10⁵ DOFs. Its options take the prefix
-/// `canonical_` (e.g. `-canonical_pc_factor_mat_ordering_type rcm`).
+/// rank-count independent, see `solver::discretization`), and so are the split, the
+/// fill-reducing ordering, the factors and every solution: with it a staged elasto-plastic run
+/// gives the same result on 1 and 2 ranks, not merely the same to a tolerance. Its cost is that
+/// of a serial direct solve on every rank, so it suits meshes up to some 10⁵ DOFs. Its options
+/// take the prefix `canonical_` (e.g. `-canonical_pc_factor_mat_ordering_type rcm`).
 pub struct CanonicalLu {
     canonical: Vec<i32>,
     is_all: p::IS,
     is_perm: p::IS,
     /// The gathered matrix (array of one, from `MatCreateSubMatrices`).
     sub: *mut p::Mat,
-    /// The permuted matrix the factorization works on (kept, so its symbolic factorization is
-    /// reused).
-    canon: p::Mat,
+    /// Canonical positions of the coupled rows (increasing), the rows the factorization sees.
+    keep: Vec<i32>,
+    is_keep: p::IS,
+    /// For every canonical position: its index among the coupled rows, or -1 when decoupled.
+    reduced_index: Vec<i32>,
+    /// Diagonal of the permuted matrix (the solution of a decoupled row is b_i / a_ii).
+    diagonal: Vec<f64>,
+    /// The coupled block the factorization works on (kept while the coupled rows stay the
+    /// same, so its symbolic factorization is reused).
+    reduced: p::Mat,
     ksp: p::KSP,
     gather: Option<Gather>,
     /// For every owned entry: its position in the canonical order.
     local_pos: Vec<usize>,
+    rhs: Option<Vector>,
     solution: Option<Vector>,
 }
 
@@ -690,10 +714,15 @@ impl CanonicalLu {
             is_all: null_mut(),
             is_perm: null_mut(),
             sub: null_mut(),
-            canon: null_mut(),
+            keep: Vec::new(),
+            is_keep: null_mut(),
+            reduced_index: Vec::new(),
+            diagonal: Vec::new(),
+            reduced: null_mut(),
             ksp: null_mut(),
             gather: None,
             local_pos: Vec::new(),
+            rhs: None,
             solution: None,
         });
         // SAFETY: a constant handle set by MPI_Init.
@@ -731,7 +760,8 @@ impl CanonicalLu {
         call!(PCShellSetName(pc, name.as_ptr()))
     }
 
-    /// Gathers, permutes and factors the preconditioning matrix of `pc`.
+    /// Gathers and permutes the preconditioning matrix of `pc`, splits off its decoupled rows
+    /// and factors the coupled block.
     fn setup(&mut self, pc: p::PC) -> Result<(), PetscError> {
         let (mut a, mut pmat): (p::Mat, p::Mat) = (null_mut(), null_mut());
         call!(PCGetOperators(pc, &mut a, &mut pmat))?;
@@ -752,23 +782,99 @@ impl CanonicalLu {
         let mut b: p::Mat = null_mut();
         // SAFETY (inside the call): `sub` holds one matrix after MatCreateSubMatrices.
         call!(MatPermute(*self.sub, self.is_perm, self.is_perm, &mut b))?;
-        if self.canon.is_null() {
-            self.canon = b;
-            call!(KSPSetOperators(self.ksp, self.canon, self.canon))?;
-        } else {
-            let copied = call!(MatCopy(b, self.canon, p::SAME_NONZERO_PATTERN));
-            // SAFETY: created by MatPermute above, destroyed once.
-            unsafe {
-                p::MatDestroy(&mut b);
-            }
-            copied?;
+        let factored = self.factor_coupled(pc, b);
+        // SAFETY: created by MatPermute above, destroyed once.
+        unsafe {
+            p::MatDestroy(&mut b);
         }
-        call!(KSPSetUp(self.ksp))?;
-        let mut inner: p::PC = null_mut();
-        call!(KSPGetPC(self.ksp, &mut inner))?;
+        factored
+    }
+
+    /// Finds the rows of `b` decoupled from all others (no nonzero off the diagonal in their
+    /// row or column: the constrained DOFs and the nodes not yet placed) and factors the block
+    /// of the others. The decoupled rows are solved by division, so the factorization works on
+    /// the placed part of the mesh only; the split depends on the matrix alone and so is the
+    /// same at any rank count.
+    fn factor_coupled(&mut self, pc: p::PC, b: p::Mat) -> Result<(), PetscError> {
+        let n = self.canonical.len();
+        let mut coupled = vec![false; n];
+        let mut diagonal = vec![0.0; n];
+        for r in 0..n {
+            let (mut ncols, mut cols, mut vals): (i32, *const i32, *const f64) = (0, null(), null());
+            call!(MatGetRow(b, r as i32, &mut ncols, &mut cols, &mut vals))?;
+            if ncols > 0 {
+                // SAFETY: MatGetRow returned `ncols` column indices and values, valid until
+                // MatRestoreRow.
+                let (cols_r, vals_r) = unsafe {
+                    (
+                        std::slice::from_raw_parts(cols, ncols as usize),
+                        std::slice::from_raw_parts(vals, ncols as usize),
+                    )
+                };
+                for (&c, &v) in cols_r.iter().zip(vals_r) {
+                    if c as usize == r {
+                        diagonal[r] = v;
+                    } else if v != 0.0 {
+                        coupled[r] = true;
+                        coupled[c as usize] = true;
+                    }
+                }
+            }
+            call!(MatRestoreRow(b, r as i32, &mut ncols, &mut cols, &mut vals))?;
+        }
+        let keep: Vec<i32> = (0..n as i32).filter(|&i| coupled[i as usize]).collect();
+        let singular = (0..n).any(|i| !coupled[i] && diagonal[i] == 0.0);
+        self.diagonal = diagonal;
+        if keep != self.keep || self.is_keep.is_null() {
+            // a new set of coupled rows (a new stage): a new block and symbolic factorization
+            // SAFETY: handles created here, destroyed once (null is accepted).
+            unsafe {
+                p::MatDestroy(&mut self.reduced);
+                p::ISDestroy(&mut self.is_keep);
+            }
+            self.reduced_index = vec![-1; n];
+            for (k, &i) in keep.iter().enumerate() {
+                self.reduced_index[i as usize] = k as i32;
+            }
+            self.keep = keep;
+            // SAFETY: a constant handle set by MPI_Init.
+            let self_comm = unsafe { mpi::ffi::RSMPI_COMM_SELF };
+            call!(ISCreateGeneral(
+                self_comm,
+                self.keep.len() as i32,
+                self.keep.as_ptr(),
+                p::PETSC_COPY_VALUES,
+                &mut self.is_keep
+            ))?;
+            self.rhs = Some(Vector::seq(self.keep.len())?);
+            self.solution = Some(Vector::seq(self.keep.len())?);
+            if !self.keep.is_empty() {
+                call!(MatCreateSubMatrix(
+                    b,
+                    self.is_keep,
+                    self.is_keep,
+                    p::MAT_INITIAL_MATRIX,
+                    &mut self.reduced
+                ))?;
+                call!(KSPSetOperators(self.ksp, self.reduced, self.reduced))?;
+            }
+        } else if !self.keep.is_empty() {
+            call!(MatCreateSubMatrix(
+                b,
+                self.is_keep,
+                self.is_keep,
+                p::MAT_REUSE_MATRIX,
+                &mut self.reduced
+            ))?;
+        }
         let mut failed: p::PCFailedReason = 0;
-        call!(PCGetFailedReason(inner, &mut failed))?;
-        if failed != 0 {
+        if !self.keep.is_empty() {
+            call!(KSPSetUp(self.ksp))?;
+            let mut inner: p::PC = null_mut();
+            call!(KSPGetPC(self.ksp, &mut inner))?;
+            call!(PCGetFailedReason(inner, &mut failed))?;
+        }
+        if failed != 0 || singular {
             // a zero pivot: the Newton step fails as a linear solve and is cut back
             call!(PCSetFailedReason(pc, p::PC_SUBPC_ERROR))?;
         }
@@ -786,26 +892,38 @@ impl CanonicalLu {
             }
             self.local_pos = inverse[lo..hi].to_vec();
             self.gather = Some(Gather::new(&x, &self.canonical)?);
-            self.solution = Some(Vector::seq(self.canonical.len())?);
         }
-        let (Some(gather), Some(solution)) = (self.gather.as_mut(), self.solution.as_mut()) else {
-            unreachable!("set above");
+        let (Some(gather), Some(rhs), Some(solution)) =
+            (self.gather.as_mut(), self.rhs.as_mut(), self.solution.as_mut())
+        else {
+            unreachable!("set up before the first solve");
         };
         let b = gather.gather(&x)?;
-        call!(KSPSolve(self.ksp, b.raw, solution.raw))?;
-        let mut reason = 0;
-        call!(KSPGetConvergedReason(self.ksp, &mut reason))?;
-        if reason < 0 {
-            call!(PCSetFailedReason(pc, p::PC_SUBPC_ERROR))?;
+        let keep = &self.keep;
+        b.read(|full| rhs.write(|r| r.iter_mut().zip(keep).for_each(|(o, &i)| *o = full[i as usize])))??;
+        if !keep.is_empty() {
+            call!(KSPSolve(self.ksp, rhs.raw, solution.raw))?;
+            let mut reason = 0;
+            call!(KSPGetConvergedReason(self.ksp, &mut reason))?;
+            if reason < 0 {
+                call!(PCSetFailedReason(pc, p::PC_SUBPC_ERROR))?;
+            }
         }
-        let local_pos = &self.local_pos;
-        solution.read(|s| {
-            y.write(|out| {
-                for (o, &k) in out.iter_mut().zip(local_pos) {
-                    *o = s[k];
-                }
+        let (local_pos, reduced_index, diagonal) = (&self.local_pos, &self.reduced_index, &self.diagonal);
+        b.read(|full| {
+            solution.read(|s| {
+                y.write(|out| {
+                    for (o, &k) in out.iter_mut().zip(local_pos) {
+                        let r = reduced_index[k];
+                        *o = if r >= 0 {
+                            s[r as usize]
+                        } else {
+                            full[k] / diagonal[k]
+                        };
+                    }
+                })
             })
-        })??;
+        })???;
         Ok(())
     }
 }
@@ -818,8 +936,9 @@ impl Drop for CanonicalLu {
             if !self.sub.is_null() {
                 p::MatDestroySubMatrices(1, &mut self.sub);
             }
-            p::MatDestroy(&mut self.canon);
+            p::MatDestroy(&mut self.reduced);
             p::KSPDestroy(&mut self.ksp);
+            p::ISDestroy(&mut self.is_keep);
             p::ISDestroy(&mut self.is_all);
             p::ISDestroy(&mut self.is_perm);
         }

@@ -420,10 +420,14 @@ impl RockfillGp {
     /// ```
     fn moduli(&self, p_hat: f64) -> (f64, f64) {
         let r = p_hat / self.pa;
-        (
-            self.params.k0 * self.pa * r.powf(self.params.mv),
-            self.params.g0 * self.pa * r.powf(self.params.ms),
-        )
+        let rv = r.powf(self.params.mv);
+        // the seed's exponents are equal (0.43): one power serves both, bitwise the same
+        let rs = if self.params.ms == self.params.mv {
+            rv
+        } else {
+            r.powf(self.params.ms)
+        };
+        (self.params.k0 * self.pa * rv, self.params.g0 * self.pa * rs)
     }
 
     /// Elastic matrix D^e (kPa) at a tension-positive stress in kPa (spec (R2), (R3)).
