@@ -26,9 +26,11 @@ declare -A mesh=(
 # 100 s); these runs factored the whole matrix, the constrained and unplaced DOFs included. The
 # canonical LU now splits those rows off (linalg::petsc::CanonicalLu), which keeps the
 # factorization to the placed mesh and makes MUMPS's results the same on 1 and 2 ranks too.
-# The fine mesh (256k DOFs) is solved iteratively with BoomerAMG (-pc_type hypre): on 2
-# ranks the default GAMG failed in the first fill stage (PC failed, SUBPC_ERROR; with
-# -pc_gamg_threshold 0 in the third), while BoomerAMG passed stages 1-3 in about 4 minutes.
+# The fine mesh (256k DOFs) uses the same solver: on 2 ranks its first 8 fill stages took 2.0 min
+# and its first 15 8.3 min (with the partition balanced per construction band), where BoomerAMG
+# (-pc_type hypre) took 13.0 min for the first 8; the default GAMG failed in the first fill stage
+# (PC failed, SUBPC_ERROR; with -pc_gamg_threshold 0 in the third). The factorization's memory
+# once the whole fine mesh is placed has not been measured (1.2 GB per rank at fill_016).
 # Newton tolerance 1e-5 (spec section 8.1 gives 1e-4 as typical): the GP substepping (STOL 1e-4)
 # leaves an out-of-balance noise of about STOL x stress x face area, measured on the coarse
 # mesh's first fill layer as 3e3 N at a cushion corner node, 2e-6 of the layer's weight; the
@@ -46,7 +48,7 @@ declare -A mesh=(
 declare -A solver=(
   [coarse]="solver: { newton_tol: 1.0e-5, newton_max_iterations: 15, load_steps: 8, linear_solver: canonical_lu }"
   [medium]="solver: { newton_tol: 1.0e-5, newton_max_iterations: 15, load_steps: 8, linear_solver: canonical_lu, petsc_options: \"-canonical_pc_factor_mat_solver_type mumps\" }"
-  [fine]="solver: { newton_tol: 1.0e-5, newton_max_iterations: 15, load_steps: 8, petsc_options: \"-pc_type hypre\" }"
+  [fine]="solver: { newton_tol: 1.0e-5, newton_max_iterations: 15, load_steps: 8, linear_solver: canonical_lu, petsc_options: \"-canonical_pc_factor_mat_solver_type mumps\" }"
 )
 declare -A note=(
   [coarse]="coarse mesh (panels 30 m, wider than the seed's 12-18 m)"

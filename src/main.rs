@@ -275,7 +275,8 @@ fn main() -> ExitCode {
     }
 }
 
-/// `cfrd partition`: METIS on the scene's mesh, written to a partition file.
+/// `cfrd partition`: METIS on the scene's mesh (each construction band balanced, as `cfrd run`
+/// does), written to a partition file.
 fn partition_ahead(scene: &std::path::Path, parts: usize, out: &std::path::Path) -> Result<String, String> {
     if parts == 0 {
         return Err("--parts must be at least 1".into());
@@ -283,7 +284,9 @@ fn partition_ahead(scene: &std::path::Path, parts: usize, out: &std::path::Path)
     let s = cfrd::scene::Scene::load(scene).map_err(|e| e.to_string())?;
     let cells = cfrd::solver::statics::mesh_cells(&s.mesh);
     let n = s.mesh.num_nodes();
-    let part = partition::partition_elements(&cells, n, parts).map_err(|e| e.to_string())?;
+    let (band, n_bands) = cfrd::run::construction_bands(&s);
+    let part =
+        partition::partition_elements_by_band(&cells, n, parts, &band, n_bands).map_err(|e| e.to_string())?;
     let p = partition::Partition::new(&cells, n, parts, part.clone());
     let counts: Vec<usize> = (0..parts).map(|r| p.owned_cells(r).len()).collect();
     partition::PartitionFile::new(&cells, n, parts, part)

@@ -13,7 +13,7 @@ use crate::solver::checkpoint::{self, CHECKPOINT_FILE};
 use crate::solver::discretization::Discretization;
 use crate::solver::statics::{mesh_cells, LocalResults, SolveReport, StaticProblem};
 use mpi::topology::{Communicator, SimpleCommunicator};
-use partition::{partition_elements, Partition, PartitionFile};
+use partition::{partition_elements_by_band, Partition, PartitionFile};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -72,7 +72,10 @@ pub fn partition_scene(world: &SimpleCommunicator, scene: &Scene) -> Result<Part
             Some(p) => {
                 PartitionFile::read(&scene.resolve(p), &cells, n_nodes, nparts).map_err(|e| e.to_string())
             }
-            None => partition_elements(&cells, n_nodes, nparts).map_err(|e| e.to_string()),
+            None => {
+                let (band, n_bands) = construction_bands(scene);
+                partition_elements_by_band(&cells, n_nodes, nparts, &band, n_bands).map_err(|e| e.to_string())
+            }
         }
     } else {
         Ok(Vec::new())
@@ -80,6 +83,32 @@ pub fn partition_scene(world: &SimpleCommunicator, scene: &Scene) -> Result<Part
     let mut part = any_error(world, local).map_err(input)?;
     broadcast_vec(world, 0, &mut part);
     Ok(Partition::new(&cells, n_nodes, nparts, part))
+}
+
+/// Most construction bands of [`construction_bands`] (constraints of the METIS partition).
+const MAX_BANDS: usize = 8;
+
+/// The construction band of every element and the number of bands: the stages that place
+/// elements, in order, grouped into at most 8 consecutive bands of about equal
+/// numbers of stages. Elements never placed by a stage go with the first band. The partition
+/// balances each band over the ranks (`partition::partition_elements_by_band`).
+pub fn construction_bands(scene: &Scene) -> (Vec<u32>, usize) {
+    let placing: Vec<&crate::scene::validate::Stage> =
+        scene.stages.iter().filter(|s| !s.activate.is_empty()).collect();
+    let n_bands = placing.len().min(MAX_BANDS);
+    let mut block_band = vec![0u32; scene.mesh.blocks.len()];
+    for (k, stage) in placing.iter().enumerate() {
+        for &b in &stage.activate {
+            block_band[b as usize] = (k * n_bands / placing.len()) as u32;
+        }
+    }
+    let band = scene
+        .mesh
+        .elements
+        .iter()
+        .map(|e| block_band[e.block as usize])
+        .collect();
+    (band, n_bands)
 }
 
 /// Runs a static analysis and writes `results.h5`, `results.xdmf` and `summary.json` into the

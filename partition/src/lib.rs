@@ -119,6 +119,45 @@ pub fn partition_elements(cells: &Cells, n_nodes: usize, nparts: usize) -> Resul
     Ok(part.into_iter().map(|p| p as u32).collect())
 }
 
+/// Partitions the cells like [`partition_elements`], balancing each construction band on its
+/// own: `band[c]` (below `n_bands`) is the band of cell `c`, e.g. the group of fill layers it is
+/// placed with. METIS balances every band's cells across the parts (multi-constraint k-way), so
+/// at every stage of a staged construction the placed cells are spread over all ranks, where a
+/// partition balanced over the whole mesh may leave the first layers on one rank while the
+/// others wait. With fewer than two bands this is [`partition_elements`].
+#[cfg(feature = "metis")]
+pub fn partition_elements_by_band(
+    cells: &Cells,
+    n_nodes: usize,
+    nparts: usize,
+    band: &[u32],
+    n_bands: usize,
+) -> Result<Vec<u32>, PartitionError> {
+    if n_bands < 2 || nparts <= 1 || cells.len() <= 1 {
+        return partition_elements(cells, n_nodes, nparts);
+    }
+    assert_eq!(band.len(), cells.len(), "one band per cell");
+    let eptr: Vec<metis::Idx> = cells.cell_ptr.iter().map(|&v| v as metis::Idx).collect();
+    let eind: Vec<metis::Idx> = cells.cell_nodes.iter().map(|&v| v as metis::Idx).collect();
+    let dual = metis::mesh_to_dual(&eptr, &eind, 3).map_err(|e| PartitionError::Metis(format!("{e:?}")))?;
+    let mut vwgt = vec![0 as metis::Idx; cells.len() * n_bands];
+    for (c, &b) in band.iter().enumerate() {
+        vwgt[c * n_bands + b as usize] = 1;
+    }
+    let mut part = vec![0 as metis::Idx; cells.len()];
+    metis::Graph::new(
+        n_bands as metis::Idx,
+        nparts as metis::Idx,
+        dual.xadj(),
+        dual.adjncy(),
+    )
+    .map_err(|e| PartitionError::Metis(format!("{e:?}")))?
+    .set_vwgt(&vwgt)
+    .part_kway(&mut part)
+    .map_err(|e| PartitionError::Metis(format!("{e:?}")))?;
+    Ok(part.into_iter().map(|p| p as u32).collect())
+}
+
 /// Ownership of cells and nodes on every rank, derived from a cell partition.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Partition {
@@ -354,6 +393,33 @@ mod tests {
         // a row splits with a single cut: parts form two contiguous runs
         let changes = a.windows(2).filter(|w| w[0] != w[1]).count();
         assert_eq!(changes, 1);
+    }
+
+    #[cfg(feature = "metis")]
+    #[test]
+    fn banded_partition_spreads_every_band_over_the_parts() {
+        // two bands of 20 cells along a row: a partition of the whole row cuts it once, in the
+        // middle, and leaves each band on one part; the banded one splits both bands
+        let (cells, nn) = Cells::hex_row(40);
+        let band: Vec<u32> = (0..40).map(|c| u32::from(c >= 20)).collect();
+        let whole = partition_elements(&cells, nn, 2).unwrap();
+        let on_part_0 = |p: &[u32], b: u32| (0..40).filter(|&c| band[c] == b && p[c] == 0).count();
+        assert!(
+            [0, 20].contains(&on_part_0(&whole, 0)),
+            "the plain partition keeps band 0 together: {whole:?}"
+        );
+        let banded = partition_elements_by_band(&cells, nn, 2, &band, 2).unwrap();
+        assert_eq!(
+            banded,
+            partition_elements_by_band(&cells, nn, 2, &band, 2).unwrap()
+        );
+        for b in 0..2 {
+            let n0 = on_part_0(&banded, b);
+            assert!(
+                (7..=13).contains(&n0),
+                "band {b}: {n0} of 20 on part 0: {banded:?}"
+            );
+        }
     }
 
     #[test]

@@ -655,17 +655,19 @@ unsafe extern "C" fn snes_objective<P: SnesProblem>(
 }
 
 /// A direct solver whose result does not depend on the rank count (a preconditioner shell
-/// under `preonly`): at every Jacobian the distributed matrix is gathered on every rank,
-/// permuted into the mesh's own DOF order (node by node in input order, the `canonical` list
-/// giving the PETSc index of each), its decoupled rows are split off and the rest is factored
-/// by a sequential LU; each solve gathers the right-hand side in the same order and keeps the
-/// owned part of the solution.
+/// under `preonly`): at every Jacobian the rows coupled to others are found, their block of the
+/// distributed matrix is gathered on every rank, permuted into the mesh's own DOF order (node by
+/// node in input order, the `canonical` list giving the PETSc index of each) and factored by a
+/// sequential LU; each solve gathers the right-hand side in the same order and keeps the owned
+/// part of the solution.
 ///
 /// Decoupled rows are those with no nonzero off the diagonal in their row or column: the
 /// constrained DOFs (their rows and columns are zeroed, `Matrix::zero_rows_columns_only`) and
-/// the nodes of fill not yet placed. Their solution is a division; the factorization sees only
-/// the placed part of the mesh, and its symbolic factorization is reused while that part stays
-/// the same (within a stage).
+/// the nodes of fill not yet placed. Their solution is a division. The gather, the permutation
+/// and the factorization see only the placed part of the mesh, not the stored zeros of the rest
+/// (on the fine seed mesh, before this, a third of the time went into gathering the whole
+/// matrix); the symbolic factorization is reused while the coupled rows stay the same (within
+/// a stage).
 ///
 /// The factorization is PETSc's own sequential LU unless the options choose another package:
 /// `-canonical_pc_factor_mat_solver_type mumps` (the medium seed scenes use it) factors with
@@ -674,7 +676,7 @@ unsafe extern "C" fn snes_objective<P: SnesProblem>(
 /// DOFs, README "Seed dam status"). With the decoupled rows split off both give the same results
 /// bit for bit on 1 and 2 ranks (tests `cfrd_dam`); without the split, MUMPS's 1-rank solves
 /// differed from its 2-rank ones in the last bits (measured), which the path-dependent
-/// plasticity carried to 1e-3 in the stresses.
+/// plasticity carried to 6e-3 in the results of the coarse seed run.
 ///
 /// The gathered, permuted matrix is the same bit for bit at any rank count (the assembly is
 /// rank-count independent, see `solver::discretization`), and so are the split, the
@@ -684,57 +686,55 @@ unsafe extern "C" fn snes_objective<P: SnesProblem>(
 /// take the prefix `canonical_` (e.g. `-canonical_pc_factor_mat_ordering_type rcm`).
 pub struct CanonicalLu {
     canonical: Vec<i32>,
-    is_all: p::IS,
-    is_perm: p::IS,
-    /// The gathered matrix (array of one, from `MatCreateSubMatrices`).
-    sub: *mut p::Mat,
-    /// Canonical positions of the coupled rows (increasing), the rows the factorization sees.
-    keep: Vec<i32>,
-    is_keep: p::IS,
-    /// For every canonical position: its index among the coupled rows, or -1 when decoupled.
-    reduced_index: Vec<i32>,
-    /// Diagonal of the permuted matrix (the solution of a decoupled row is b_i / a_ii).
-    diagonal: Vec<f64>,
-    /// The coupled block the factorization works on (kept while the coupled rows stay the
-    /// same, so its symbolic factorization is reused).
-    reduced: p::Mat,
-    ksp: p::KSP,
+    /// Per row (distributed like the matrix): nonzero when the row's DOF is coupled.
+    flags: Option<Vector>,
+    /// The matrix diagonal (distributed like the matrix).
+    diag: Option<Vector>,
+    /// Gathers a distributed vector into the canonical order on every rank.
     gather: Option<Gather>,
     /// For every owned entry: its position in the canonical order.
     local_pos: Vec<usize>,
+    /// Canonical positions of the coupled rows (increasing), the rows the factorization sees.
+    keep: Vec<i32>,
+    /// The PETSc indices of the coupled rows, increasing (what is gathered).
+    is_rows: p::IS,
+    /// For every coupled row in canonical order: its place among `is_rows`.
+    is_perm: p::IS,
+    /// The gathered coupled block (array of one, from `MatCreateSubMatrices`).
+    sub: *mut p::Mat,
+    /// The coupled block in canonical order, the matrix factored (kept while the coupled rows
+    /// stay the same, so its symbolic factorization is reused).
+    reduced: p::Mat,
+    /// For every canonical position: its index among the coupled rows, or -1 when decoupled.
+    reduced_index: Vec<i32>,
+    /// Diagonal in canonical order (the solution of a decoupled row is b_i / a_ii).
+    diagonal: Vec<f64>,
+    ksp: p::KSP,
     rhs: Option<Vector>,
     solution: Option<Vector>,
 }
 
 impl CanonicalLu {
     fn new(canonical: Vec<i32>) -> Result<Box<CanonicalLu>, PetscError> {
-        let n = canonical.len() as i32;
         let mut lu = Box::new(CanonicalLu {
             canonical,
-            is_all: null_mut(),
-            is_perm: null_mut(),
-            sub: null_mut(),
-            keep: Vec::new(),
-            is_keep: null_mut(),
-            reduced_index: Vec::new(),
-            diagonal: Vec::new(),
-            reduced: null_mut(),
-            ksp: null_mut(),
+            flags: None,
+            diag: None,
             gather: None,
             local_pos: Vec::new(),
+            keep: Vec::new(),
+            is_rows: null_mut(),
+            is_perm: null_mut(),
+            sub: null_mut(),
+            reduced: null_mut(),
+            reduced_index: Vec::new(),
+            diagonal: Vec::new(),
+            ksp: null_mut(),
             rhs: None,
             solution: None,
         });
         // SAFETY: a constant handle set by MPI_Init.
         let self_comm = unsafe { mpi::ffi::RSMPI_COMM_SELF };
-        call!(ISCreateStride(self_comm, n, 0, 1, &mut lu.is_all))?;
-        call!(ISCreateGeneral(
-            self_comm,
-            n,
-            lu.canonical.as_ptr(),
-            p::PETSC_COPY_VALUES,
-            &mut lu.is_perm
-        ))?;
         call!(KSPCreate(self_comm, &mut lu.ksp))?;
         let prefix = CString::new("canonical_").expect("no NUL");
         call!(KSPSetOptionsPrefix(lu.ksp, prefix.as_ptr()))?;
@@ -760,115 +760,47 @@ impl CanonicalLu {
         call!(PCShellSetName(pc, name.as_ptr()))
     }
 
-    /// Gathers and permutes the preconditioning matrix of `pc`, splits off its decoupled rows
-    /// and factors the coupled block.
+    /// Finds the coupled rows of the preconditioning matrix of `pc`, gathers their block on
+    /// every rank, permutes it into the canonical order and factors it.
     fn setup(&mut self, pc: p::PC) -> Result<(), PetscError> {
         let (mut a, mut pmat): (p::Mat, p::Mat) = (null_mut(), null_mut());
         call!(PCGetOperators(pc, &mut a, &mut pmat))?;
-        let reuse = if self.sub.is_null() {
+        let (coupled, diagonal) = self.coupling(pmat)?;
+        let n = self.canonical.len();
+        let keep: Vec<i32> = (0..n as i32).filter(|&i| coupled[i as usize]).collect();
+        let singular = (0..n).any(|i| !coupled[i] && diagonal[i] == 0.0);
+        self.diagonal = diagonal;
+        let reuse = if keep != self.keep || self.is_rows.is_null() {
+            self.new_coupled_set(keep)?;
             p::MAT_INITIAL_MATRIX
         } else {
             p::MAT_REUSE_MATRIX
         };
-        call!(MatCreateSubMatrices(
-            pmat,
-            1,
-            &self.is_all,
-            &self.is_all,
-            reuse,
-            &mut self.sub
-        ))?;
-        // B(i, j) = A(canonical[i], canonical[j])
-        let mut b: p::Mat = null_mut();
-        // SAFETY (inside the call): `sub` holds one matrix after MatCreateSubMatrices.
-        call!(MatPermute(*self.sub, self.is_perm, self.is_perm, &mut b))?;
-        let factored = self.factor_coupled(pc, b);
-        // SAFETY: created by MatPermute above, destroyed once.
-        unsafe {
-            p::MatDestroy(&mut b);
-        }
-        factored
-    }
-
-    /// Finds the rows of `b` decoupled from all others (no nonzero off the diagonal in their
-    /// row or column: the constrained DOFs and the nodes not yet placed) and factors the block
-    /// of the others. The decoupled rows are solved by division, so the factorization works on
-    /// the placed part of the mesh only; the split depends on the matrix alone and so is the
-    /// same at any rank count.
-    fn factor_coupled(&mut self, pc: p::PC, b: p::Mat) -> Result<(), PetscError> {
-        let n = self.canonical.len();
-        let mut coupled = vec![false; n];
-        let mut diagonal = vec![0.0; n];
-        for r in 0..n {
-            let (mut ncols, mut cols, mut vals): (i32, *const i32, *const f64) = (0, null(), null());
-            call!(MatGetRow(b, r as i32, &mut ncols, &mut cols, &mut vals))?;
-            if ncols > 0 {
-                // SAFETY: MatGetRow returned `ncols` column indices and values, valid until
-                // MatRestoreRow.
-                let (cols_r, vals_r) = unsafe {
-                    (
-                        std::slice::from_raw_parts(cols, ncols as usize),
-                        std::slice::from_raw_parts(vals, ncols as usize),
-                    )
-                };
-                for (&c, &v) in cols_r.iter().zip(vals_r) {
-                    if c as usize == r {
-                        diagonal[r] = v;
-                    } else if v != 0.0 {
-                        coupled[r] = true;
-                        coupled[c as usize] = true;
-                    }
-                }
-            }
-            call!(MatRestoreRow(b, r as i32, &mut ncols, &mut cols, &mut vals))?;
-        }
-        let keep: Vec<i32> = (0..n as i32).filter(|&i| coupled[i as usize]).collect();
-        let singular = (0..n).any(|i| !coupled[i] && diagonal[i] == 0.0);
-        self.diagonal = diagonal;
-        if keep != self.keep || self.is_keep.is_null() {
-            // a new set of coupled rows (a new stage): a new block and symbolic factorization
-            // SAFETY: handles created here, destroyed once (null is accepted).
-            unsafe {
-                p::MatDestroy(&mut self.reduced);
-                p::ISDestroy(&mut self.is_keep);
-            }
-            self.reduced_index = vec![-1; n];
-            for (k, &i) in keep.iter().enumerate() {
-                self.reduced_index[i as usize] = k as i32;
-            }
-            self.keep = keep;
-            // SAFETY: a constant handle set by MPI_Init.
-            let self_comm = unsafe { mpi::ffi::RSMPI_COMM_SELF };
-            call!(ISCreateGeneral(
-                self_comm,
-                self.keep.len() as i32,
-                self.keep.as_ptr(),
-                p::PETSC_COPY_VALUES,
-                &mut self.is_keep
-            ))?;
-            self.rhs = Some(Vector::seq(self.keep.len())?);
-            self.solution = Some(Vector::seq(self.keep.len())?);
-            if !self.keep.is_empty() {
-                call!(MatCreateSubMatrix(
-                    b,
-                    self.is_keep,
-                    self.is_keep,
-                    p::MAT_INITIAL_MATRIX,
-                    &mut self.reduced
-                ))?;
-                call!(KSPSetOperators(self.ksp, self.reduced, self.reduced))?;
-            }
-        } else if !self.keep.is_empty() {
-            call!(MatCreateSubMatrix(
-                b,
-                self.is_keep,
-                self.is_keep,
-                p::MAT_REUSE_MATRIX,
-                &mut self.reduced
-            ))?;
-        }
         let mut failed: p::PCFailedReason = 0;
         if !self.keep.is_empty() {
+            call!(MatCreateSubMatrices(
+                pmat,
+                1,
+                &self.is_rows,
+                &self.is_rows,
+                reuse,
+                &mut self.sub
+            ))?;
+            // B(k, l) = A(canonical[keep[k]], canonical[keep[l]])
+            let mut b: p::Mat = null_mut();
+            // SAFETY (inside the call): `sub` holds one matrix after MatCreateSubMatrices.
+            call!(MatPermute(*self.sub, self.is_perm, self.is_perm, &mut b))?;
+            if self.reduced.is_null() {
+                self.reduced = b;
+                call!(KSPSetOperators(self.ksp, self.reduced, self.reduced))?;
+            } else {
+                let copied = call!(MatCopy(b, self.reduced, p::SAME_NONZERO_PATTERN));
+                // SAFETY: created by MatPermute above, destroyed once.
+                unsafe {
+                    p::MatDestroy(&mut b);
+                }
+                copied?;
+            }
             call!(KSPSetUp(self.ksp))?;
             let mut inner: p::PC = null_mut();
             call!(KSPGetPC(self.ksp, &mut inner))?;
@@ -881,18 +813,138 @@ impl CanonicalLu {
         Ok(())
     }
 
-    /// y = A⁻¹ x through the canonical factors.
-    fn apply(&mut self, pc: p::PC, x: p::Vec, y: p::Vec) -> Result<(), PetscError> {
-        let (x, mut y) = (borrowed(x), borrowed(y));
-        if self.gather.is_none() {
-            let (lo, hi) = x.ownership_range()?;
+    /// Which rows of `pmat` are coupled, in canonical order, and the diagonal in that order.
+    ///
+    /// A row is decoupled when no entry off the diagonal in its row or column is nonzero: the
+    /// constrained DOFs and the nodes of fill not yet placed. Each rank marks its own rows and
+    /// the columns of their nonzero entries (a count, so the sum is exact in any order); the
+    /// marks are then gathered in the canonical order, so every rank finds the same split.
+    fn coupling(&mut self, pmat: p::Mat) -> Result<(Vec<bool>, Vec<f64>), PetscError> {
+        if self.flags.is_none() {
+            let (mut right, mut left): (p::Vec, p::Vec) = (null_mut(), null_mut());
+            call!(MatCreateVecs(pmat, &mut right, &mut left))?;
+            let (flags, diag) = (Vector { raw: right }, Vector { raw: left });
+            let (lo, hi) = flags.ownership_range()?;
             let mut inverse = vec![0usize; self.canonical.len()];
             for (i, &g) in self.canonical.iter().enumerate() {
                 inverse[g as usize] = i;
             }
             self.local_pos = inverse[lo..hi].to_vec();
-            self.gather = Some(Gather::new(&x, &self.canonical)?);
+            self.gather = Some(Gather::new(&flags, &self.canonical)?);
+            self.flags = Some(flags);
+            self.diag = Some(diag);
         }
+        let (Some(flags), Some(diag), Some(gather)) =
+            (self.flags.as_mut(), self.diag.as_mut(), self.gather.as_mut())
+        else {
+            unreachable!("created above");
+        };
+        let (lo, hi) = flags.ownership_range()?;
+        let mut marks = vec![false; hi - lo];
+        let mut remote: Vec<i32> = Vec::new();
+        for r in lo..hi {
+            let (mut ncols, mut cols, mut vals): (i32, *const i32, *const f64) = (0, null(), null());
+            call!(MatGetRow(pmat, r as i32, &mut ncols, &mut cols, &mut vals))?;
+            if ncols > 0 {
+                // SAFETY: MatGetRow returned `ncols` column indices and values, valid until
+                // MatRestoreRow.
+                let (cols_r, vals_r) = unsafe {
+                    (
+                        std::slice::from_raw_parts(cols, ncols as usize),
+                        std::slice::from_raw_parts(vals, ncols as usize),
+                    )
+                };
+                for (&c, &v) in cols_r.iter().zip(vals_r) {
+                    let c = c as usize;
+                    if c != r && v != 0.0 {
+                        marks[r - lo] = true;
+                        if (lo..hi).contains(&c) {
+                            marks[c - lo] = true;
+                        } else {
+                            remote.push(c as i32);
+                        }
+                    }
+                }
+            }
+            call!(MatRestoreRow(pmat, r as i32, &mut ncols, &mut cols, &mut vals))?;
+        }
+        remote.sort_unstable();
+        remote.dedup();
+        flags.write(|f| {
+            for (o, &m) in f.iter_mut().zip(&marks) {
+                *o = if m { 1.0 } else { 0.0 };
+            }
+        })?;
+        let ones = vec![1.0; remote.len()];
+        call!(VecSetValues(
+            flags.raw,
+            remote.len() as i32,
+            remote.as_ptr(),
+            ones.as_ptr(),
+            p::ADD_VALUES
+        ))?;
+        call!(VecAssemblyBegin(flags.raw))?;
+        call!(VecAssemblyEnd(flags.raw))?;
+        call!(MatGetDiagonal(pmat, diag.raw))?;
+        let coupled: Vec<bool> = gather
+            .gather(flags)?
+            .read(|s| s.iter().map(|&f| f > 0.0).collect())?;
+        let diagonal: Vec<f64> = gather.gather(diag)?.read(|s| s.to_vec())?;
+        Ok((coupled, diagonal))
+    }
+
+    /// Starts over with the coupled rows `keep` (canonical positions, increasing): new index
+    /// sets, a new block and so a new symbolic factorization (at a new stage).
+    fn new_coupled_set(&mut self, keep: Vec<i32>) -> Result<(), PetscError> {
+        // SAFETY: handles created here, destroyed once (null is accepted).
+        unsafe {
+            if !self.sub.is_null() {
+                p::MatDestroySubMatrices(1, &mut self.sub);
+            }
+            self.sub = null_mut();
+            p::MatDestroy(&mut self.reduced);
+            p::ISDestroy(&mut self.is_rows);
+            p::ISDestroy(&mut self.is_perm);
+        }
+        let n = self.canonical.len();
+        self.reduced_index = vec![-1; n];
+        for (k, &i) in keep.iter().enumerate() {
+            self.reduced_index[i as usize] = k as i32;
+        }
+        let mut rows: Vec<i32> = keep.iter().map(|&i| self.canonical[i as usize]).collect();
+        rows.sort_unstable();
+        let perm: Vec<i32> = keep
+            .iter()
+            .map(|&i| {
+                rows.binary_search(&self.canonical[i as usize])
+                    .expect("a gathered row") as i32
+            })
+            .collect();
+        self.keep = keep;
+        // SAFETY: a constant handle set by MPI_Init.
+        let self_comm = unsafe { mpi::ffi::RSMPI_COMM_SELF };
+        call!(ISCreateGeneral(
+            self_comm,
+            rows.len() as i32,
+            rows.as_ptr(),
+            p::PETSC_COPY_VALUES,
+            &mut self.is_rows
+        ))?;
+        call!(ISCreateGeneral(
+            self_comm,
+            perm.len() as i32,
+            perm.as_ptr(),
+            p::PETSC_COPY_VALUES,
+            &mut self.is_perm
+        ))?;
+        self.rhs = Some(Vector::seq(self.keep.len())?);
+        self.solution = Some(Vector::seq(self.keep.len())?);
+        Ok(())
+    }
+
+    /// y = A⁻¹ x through the canonical factors.
+    fn apply(&mut self, pc: p::PC, x: p::Vec, y: p::Vec) -> Result<(), PetscError> {
+        let (x, mut y) = (borrowed(x), borrowed(y));
         let (Some(gather), Some(rhs), Some(solution)) =
             (self.gather.as_mut(), self.rhs.as_mut(), self.solution.as_mut())
         else {
@@ -938,8 +990,7 @@ impl Drop for CanonicalLu {
             }
             p::MatDestroy(&mut self.reduced);
             p::KSPDestroy(&mut self.ksp);
-            p::ISDestroy(&mut self.is_keep);
-            p::ISDestroy(&mut self.is_all);
+            p::ISDestroy(&mut self.is_rows);
             p::ISDestroy(&mut self.is_perm);
         }
     }
