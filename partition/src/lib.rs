@@ -100,6 +100,15 @@ impl Cells {
     }
 }
 
+/// METIS keeps its random-number state in globals, so two partitions computed at once in one
+/// process (tests run in threads) could disturb each other and differ from run to run; every
+/// METIS call holds this lock.
+#[cfg(feature = "metis")]
+fn metis_lock() -> std::sync::MutexGuard<'static, ()> {
+    static LOCK: std::sync::Mutex<()> = std::sync::Mutex::new(());
+    LOCK.lock().unwrap_or_else(|poisoned| poisoned.into_inner())
+}
+
 /// Partitions the cells into `nparts` parts with METIS k-way on the dual graph (cells that
 /// share at least 3 nodes, i.e. a face, are neighbours). Returns the part of every cell.
 #[cfg(feature = "metis")]
@@ -110,6 +119,7 @@ pub fn partition_elements(cells: &Cells, n_nodes: usize, nparts: usize) -> Resul
     let eptr: Vec<metis::Idx> = cells.cell_ptr.iter().map(|&v| v as metis::Idx).collect();
     let eind: Vec<metis::Idx> = cells.cell_nodes.iter().map(|&v| v as metis::Idx).collect();
     let _ = n_nodes;
+    let _serial = metis_lock();
     let dual = metis::mesh_to_dual(&eptr, &eind, 3).map_err(|e| PartitionError::Metis(format!("{e:?}")))?;
     let mut part = vec![0 as metis::Idx; cells.len()];
     metis::Graph::new(1, nparts as metis::Idx, dual.xadj(), dual.adjncy())
@@ -139,6 +149,7 @@ pub fn partition_elements_by_band(
     assert_eq!(band.len(), cells.len(), "one band per cell");
     let eptr: Vec<metis::Idx> = cells.cell_ptr.iter().map(|&v| v as metis::Idx).collect();
     let eind: Vec<metis::Idx> = cells.cell_nodes.iter().map(|&v| v as metis::Idx).collect();
+    let _serial = metis_lock();
     let dual = metis::mesh_to_dual(&eptr, &eind, 3).map_err(|e| PartitionError::Metis(format!("{e:?}")))?;
     let mut vwgt = vec![0 as metis::Idx; cells.len() * n_bands];
     for (c, &b) in band.iter().enumerate() {
