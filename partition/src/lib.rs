@@ -113,20 +113,8 @@ fn metis_lock() -> std::sync::MutexGuard<'static, ()> {
 /// share at least 3 nodes, i.e. a face, are neighbours). Returns the part of every cell.
 #[cfg(feature = "metis")]
 pub fn partition_elements(cells: &Cells, n_nodes: usize, nparts: usize) -> Result<Vec<u32>, PartitionError> {
-    if nparts <= 1 || cells.len() <= 1 {
-        return Ok(vec![0; cells.len()]);
-    }
-    let eptr: Vec<metis::Idx> = cells.cell_ptr.iter().map(|&v| v as metis::Idx).collect();
-    let eind: Vec<metis::Idx> = cells.cell_nodes.iter().map(|&v| v as metis::Idx).collect();
     let _ = n_nodes;
-    let _serial = metis_lock();
-    let dual = metis::mesh_to_dual(&eptr, &eind, 3).map_err(|e| PartitionError::Metis(format!("{e:?}")))?;
-    let mut part = vec![0 as metis::Idx; cells.len()];
-    metis::Graph::new(1, nparts as metis::Idx, dual.xadj(), dual.adjncy())
-        .map_err(|e| PartitionError::Metis(format!("{e:?}")))?
-        .part_kway(&mut part)
-        .map_err(|e| PartitionError::Metis(format!("{e:?}")))?;
-    Ok(part.into_iter().map(|p| p as u32).collect())
+    kway(cells, nparts, 1, None)
 }
 
 /// Partitions the cells like [`partition_elements`], balancing each construction band on its
@@ -143,29 +131,46 @@ pub fn partition_elements_by_band(
     band: &[u32],
     n_bands: usize,
 ) -> Result<Vec<u32>, PartitionError> {
-    if n_bands < 2 || nparts <= 1 || cells.len() <= 1 {
+    if n_bands < 2 {
         return partition_elements(cells, n_nodes, nparts);
     }
     assert_eq!(band.len(), cells.len(), "one band per cell");
-    let eptr: Vec<metis::Idx> = cells.cell_ptr.iter().map(|&v| v as metis::Idx).collect();
-    let eind: Vec<metis::Idx> = cells.cell_nodes.iter().map(|&v| v as metis::Idx).collect();
-    let _serial = metis_lock();
-    let dual = metis::mesh_to_dual(&eptr, &eind, 3).map_err(|e| PartitionError::Metis(format!("{e:?}")))?;
     let mut vwgt = vec![0 as metis::Idx; cells.len() * n_bands];
     for (c, &b) in band.iter().enumerate() {
         vwgt[c * n_bands + b as usize] = 1;
     }
-    let mut part = vec![0 as metis::Idx; cells.len()];
-    metis::Graph::new(
-        n_bands as metis::Idx,
+    kway(cells, nparts, n_bands, Some(&vwgt))
+}
+
+/// METIS k-way on the dual graph of `cells` with `ncon` balance constraints and, when given,
+/// the cell weights `vwgt` (`ncon` per cell).
+#[cfg(feature = "metis")]
+fn kway(
+    cells: &Cells,
+    nparts: usize,
+    ncon: usize,
+    vwgt: Option<&[metis::Idx]>,
+) -> Result<Vec<u32>, PartitionError> {
+    if nparts <= 1 || cells.len() <= 1 {
+        return Ok(vec![0; cells.len()]);
+    }
+    let metis_error = |e: &dyn std::fmt::Debug| PartitionError::Metis(format!("{e:?}"));
+    let eptr: Vec<metis::Idx> = cells.cell_ptr.iter().map(|&v| v as metis::Idx).collect();
+    let eind: Vec<metis::Idx> = cells.cell_nodes.iter().map(|&v| v as metis::Idx).collect();
+    let _serial = metis_lock();
+    let dual = metis::mesh_to_dual(&eptr, &eind, 3).map_err(|e| metis_error(&e))?;
+    let mut graph = metis::Graph::new(
+        ncon as metis::Idx,
         nparts as metis::Idx,
         dual.xadj(),
         dual.adjncy(),
     )
-    .map_err(|e| PartitionError::Metis(format!("{e:?}")))?
-    .set_vwgt(&vwgt)
-    .part_kway(&mut part)
-    .map_err(|e| PartitionError::Metis(format!("{e:?}")))?;
+    .map_err(|e| metis_error(&e))?;
+    if let Some(w) = vwgt {
+        graph = graph.set_vwgt(w);
+    }
+    let mut part = vec![0 as metis::Idx; cells.len()];
+    graph.part_kway(&mut part).map_err(|e| metis_error(&e))?;
     Ok(part.into_iter().map(|p| p as u32).collect())
 }
 
