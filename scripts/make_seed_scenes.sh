@@ -44,7 +44,10 @@ declare -A mesh=(
 # 390 Newton iterations in converged steps), 8 steps 37 s (5 cut-backs, 490), 16 steps 42 s
 # (1 cut-back, 685); on the small GP dam of tests/cfrd_dam.rs (1 rank): 1 step 56 s, 4 steps
 # 17 s, 8 steps 13 s, 16 steps 11 s, 32 steps 12 s. Smaller steps also follow the
-# path-dependent load path more closely (the seed places its fill in 86 steps).
+# path-dependent load path more closely (the seed places its fill in 86 steps). The fine mesh's
+# layers are 2 m thick, yet fewer steps per layer cost more there too: with two steps per fill
+# layer (mesh.cfrd.fill_load_steps: 2) its first 9 fill stages took 211 s on 2 ranks, with 8
+# steps 110 s (a new layer's GP points start unconfined, where the model is softest).
 declare -A solver=(
   [coarse]="solver: { newton_tol: 1.0e-5, newton_max_iterations: 15, load_steps: 8, linear_solver: canonical_lu }"
   [medium]="solver: { newton_tol: 1.0e-5, newton_max_iterations: 15, load_steps: 8, linear_solver: canonical_lu, petsc_options: \"-canonical_pc_factor_mat_solver_type mumps\" }"

@@ -5,14 +5,14 @@
 # makes the figures and tables the README shows, kept in scripts/figures/:
 #   seed_static_slab.png         slab stresses and deflection of the three models (seed Figs. 8, 9)
 #   seed_static_<model>_fig*.png each run's own Figs. 7-11 (2 ranks)
-#   seed_static_runs.csv         wall time, peak memory, Newton iterations, cut-backs per run
+#   seed_static_runs.csv         wall time, peak memory, Newton iterations, cut-backs, factorizations per run
 #   seed_static_compare.txt      largest 1-vs-2-rank difference per model
 #
 # Usage: scripts/make_seed_static_figures.sh [RUN_DIR]
 #   RUN_DIR (default: a new temporary directory) keeps the runs; when RUN_DIR/<model>_<n>
 #   already holds a finished run (summary.json), that run is not repeated.
-#   MEDIUM=1 also runs the three medium scenes on 2 ranks (RUN_DIR/medium_<model>_2, each some
-#   10-20 minutes on 2 cores), overlays their slab profiles as seed_medium_slab.png, copies
+#   MEDIUM=1 also runs the three medium scenes on 2 ranks (RUN_DIR/medium_<model>_2, each 9-12
+#   minutes on 2 cores), overlays their slab profiles as seed_medium_slab.png, copies
 #   their figures as seed_medium_<model>_fig*.png and adds their rows to seed_static_runs.csv.
 # The scenes use the canonical LU (solver.linear_solver: canonical_lu), so the 1- and 2-rank
 # results are expected to be identical.
@@ -67,7 +67,7 @@ if [ ${#medium[@]} -eq 3 ]; then
         gp_interface="$runs/medium_gp_interface_2" -o "$figures/seed_medium_slab.png"
 fi
 {
-    echo "model,ranks,wall_s,peak_rss_mib,newton_iterations,steps,cutbacks,interface_points,open,slipping,max_newton_per_step"
+    echo "model,ranks,wall_s,peak_rss_mib,newton_iterations,steps,cutbacks,interface_points,open,slipping,max_newton_per_step,factorizations"
     row() { # run-directory label ranks
         python3 - "$runs/$1/summary.json" "$2" "$3" <<'PY'
 import json, sys
@@ -76,7 +76,7 @@ wall = s["total_seconds"]
 rss = max(s["peak_memory_bytes_per_rank"]) / 2**20
 print(f'{sys.argv[2]},{sys.argv[3]},{wall:.0f},{rss:.0f},{s["newton_iterations"]},{s["steps"]},'
       f'{s["cutbacks"]},{s["interface_points"]},{s["interface_open"]},{s["interface_slipping"]},'
-      f'{max(s["newton_per_step"])}')
+      f'{max(s["newton_per_step"])},{s.get("factorizations", 0)}')
 PY
     }
     for m in "${models[@]}"; do

@@ -43,3 +43,5 @@ pub mod run;
 pub mod scene;
 pub mod solver;
 pub mod tensor;
+#[cfg(test)]
+mod test_support;

@@ -313,11 +313,16 @@ pub fn run_scene(
         });
     }
     say(&format!(
-        "converged: {} step(s), {} Newton iteration(s), {} cut-back(s), {} KSP iterations",
+        "converged: {} step(s), {} Newton iteration(s), {} cut-back(s), {} KSP iterations{}",
         report.steps,
         report.newton_iterations,
         report.cutbacks,
-        report.ksp_iterations.iter().sum::<u32>()
+        report.ksp_iterations.iter().sum::<u32>(),
+        if report.factorizations > 0 {
+            format!(", {} factorization(s)", report.factorizations)
+        } else {
+            String::new()
+        }
     ));
     let counts = problem.interface_counts();
     if counts.points > 0 {
@@ -341,6 +346,7 @@ pub fn run_scene(
     summary.steps = report.steps as u64;
     summary.cutbacks = report.cutbacks as u64;
     summary.newton_per_step = report.newton_per_step.clone();
+    summary.factorizations = report.factorizations;
     summary.interface_points = counts.points;
     summary.interface_open = counts.open;
     summary.interface_slipping = counts.slipping;

@@ -206,6 +206,10 @@ pub struct RunSummary {
     /// Newton iterations of each completed step.
     #[serde(default)]
     pub newton_per_step: Vec<u32>,
+    /// Numeric factorizations of the canonical direct solver (`solver.linear_solver:
+    /// canonical_lu`).
+    #[serde(default)]
+    pub factorizations: u64,
     /// Interface and joint points of placed elements at the end of the run.
     #[serde(default)]
     pub interface_points: u64,
@@ -344,6 +348,7 @@ mod tests {
             steps: 3,
             cutbacks: 1,
             newton_per_step: vec![2, 2, 2],
+            factorizations: 5,
             interface_points: 16,
             interface_open: 2,
             interface_slipping: 3,

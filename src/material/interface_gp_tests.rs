@@ -1270,7 +1270,11 @@ fn rotate_state(st: &GpInterfaceState, c: f64, s: f64) -> GpInterfaceState {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 48, .. ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig {
+        cases: 48,
+        failure_persistence: crate::test_support::proptest_persistence(),
+        ..ProptestConfig::default()
+    })]
 
     #[test]
     fn prop_update_is_pure_and_state_round_trips(path in path_strategy(), sn in 20e3..800e3_f64) {

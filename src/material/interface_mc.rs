@@ -647,7 +647,11 @@ mod tests {
     }
 
     proptest! {
-        #![proptest_config(ProptestConfig::with_cases(64))]
+        #![proptest_config(ProptestConfig {
+            cases: 64,
+            failure_persistence: crate::test_support::proptest_persistence(),
+            ..ProptestConfig::default()
+        })]
 
         /// Consistent tangent vs central FD, purity, serde, rotation of the shear axes.
         #[test]

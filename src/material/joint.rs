@@ -221,7 +221,11 @@ mod tests {
     }
 
     proptest! {
-        #![proptest_config(ProptestConfig::with_cases(64))]
+        #![proptest_config(ProptestConfig {
+            cases: 64,
+            failure_persistence: crate::test_support::proptest_persistence(),
+            ..ProptestConfig::default()
+        })]
 
         /// Secant = tangent away from δ_n = 0 (FD), T = D·δ exactly, purity, serde, rotation;
         /// huge increments and 10,000 cycles are exact because the law is path-independent.

@@ -1677,7 +1677,11 @@ mod tests {
     }
 
     proptest! {
-        #![proptest_config(ProptestConfig { cases: 24, .. ProptestConfig::default() })]
+        #![proptest_config(ProptestConfig {
+            cases: 24,
+            failure_persistence: crate::test_support::proptest_persistence(),
+            ..ProptestConfig::default()
+        })]
 
         /// Continuum tangent vs central finite differences of `update` on loading paths.
         /// Expected agreement: the FD quotient is the algorithmic tangent of the step, which

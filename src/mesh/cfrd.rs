@@ -144,6 +144,10 @@ pub struct CfrdSpec {
     pub impoundment_level: f64,
     /// Number of impoundment stages (≥ 1).
     pub impoundment_stages: usize,
+    /// Load steps of each fill-layer stage (≥ 1); default: `solver.load_steps`, as for the other
+    /// stages. A thin layer needs fewer steps than a thick one: the seed places its 86 layers
+    /// (about 2 m each) in one step each.
+    pub fill_load_steps: Option<u32>,
     /// Unit weight of water γ_w (N/m³) for the impoundment loads. Default 9810.
     pub water_unit_weight: f64,
 }
@@ -172,6 +176,7 @@ impl Default for CfrdSpec {
             rockfill_elements: 14,
             impoundment_level: 2840.0,
             impoundment_stages: 6,
+            fill_load_steps: None,
             water_unit_weight: 9810.0,
         }
     }
@@ -187,6 +192,8 @@ pub struct CfrdStage {
     /// Reservoir level (m, elevation) on the face set `slab_upstream` at the end of the stage
     /// (impoundment stages only).
     pub water_level: Option<f64>,
+    /// Load steps of the stage (`None`: the scene's `solver.load_steps`).
+    pub load_steps: Option<u32>,
 }
 
 /// What [`cfrd_mesh`] returns besides the mesh: the schedule and a few derived numbers.
@@ -293,6 +300,9 @@ impl CfrdSpec {
         }
         if self.impoundment_stages == 0 {
             return Err(invalid("impoundment_stages", "must be at least 1".into()));
+        }
+        if self.fill_load_steps == Some(0) {
+            return Err(invalid("fill_load_steps", "must be at least 1".into()));
         }
         if !(self.water_unit_weight.is_finite()
             && self.water_unit_weight > 100.0
@@ -724,12 +734,14 @@ pub fn cfrd_mesh(spec: &CfrdSpec) -> Result<CfrdModel, MeshError> {
         name: format!("slab_{}", s + 1),
         activate: stage_blocks[s].clone(),
         water_level: None,
+        load_steps: None,
     };
     for k in 0..nz {
         stages.push(CfrdStage {
             name: format!("fill_{:03}", k + 1),
             activate: ZONES.iter().map(|z| format!("fill_{:03}_{z}", k + 1)).collect(),
             water_level: None,
+            load_steps: spec.fill_load_steps,
         });
         if k + 1 == lay.cast_layer {
             stages.push(slab_stage(0));
@@ -744,6 +756,7 @@ pub fn cfrd_mesh(spec: &CfrdSpec) -> Result<CfrdModel, MeshError> {
             name: format!("impound_{n}"),
             activate: Vec::new(),
             water_level: Some(zb + (spec.impoundment_level - zb) * n as f64 / n_imp as f64),
+            load_steps: None,
         });
     }
     let h_top = spec.height;

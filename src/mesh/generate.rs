@@ -628,7 +628,11 @@ mod tests {
     }
 
     proptest::proptest! {
-        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(64))]
+        #![proptest_config(proptest::prelude::ProptestConfig {
+            cases: 64,
+            failure_persistence: crate::test_support::proptest_persistence(),
+            ..proptest::prelude::ProptestConfig::default()
+        })]
 
         /// Any admissible dam shape and division gives valid elements and the exact volume.
         #[test]

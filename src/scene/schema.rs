@@ -247,6 +247,12 @@ pub struct SolverSpec {
     /// count (`linalg::petsc::CanonicalLu`; up to some 10⁵ DOFs).
     #[serde(default)]
     pub linear_solver: LinearSolver,
+    /// With `canonical_lu`: keep the factors of an earlier Jacobian of the same stage as the
+    /// preconditioner of GMRES on the current one, and factor again only when GMRES needs more
+    /// than a few iterations (`linalg::petsc::CanonicalLu`). Default true; `false` factors every
+    /// Jacobian (an exact direct solve per Newton iteration).
+    #[serde(default = "yes")]
+    pub reuse_factorization: bool,
 }
 
 /// The linear solver of the Newton corrections.
@@ -271,6 +277,9 @@ fn max_it() -> u32 {
 fn newton_tol() -> f64 {
     1e-8
 }
+fn yes() -> bool {
+    true
+}
 fn one() -> u32 {
     1
 }
@@ -293,6 +302,7 @@ impl Default for SolverSpec {
             petsc_options: String::new(),
             monitor: false,
             linear_solver: LinearSolver::Iterative,
+            reuse_factorization: true,
         }
     }
 }

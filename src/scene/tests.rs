@@ -149,3 +149,28 @@ fn a_bad_cfrd_value_names_its_yaml_path_in_the_scene_error() {
     let err = message(Scene::from_str(text, "t.yaml", Path::new(".")));
     assert!(err.contains("mesh.cfrd") && err.contains("fill_layer"), "{err}");
 }
+
+#[test]
+fn fill_load_steps_apply_to_the_fill_stages_only() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/inputs/scenes/seed_coarse_hyperbolic.yaml"
+    );
+    let text = std::fs::read_to_string(path).expect("seed scene");
+    let with = |steps: &str| {
+        let t = text.replace(
+            "impoundment_stages: 3 }",
+            &format!("impoundment_stages: 3, fill_load_steps: {steps} }}"),
+        );
+        assert_ne!(t, text, "the coarse scene's mesh line changed");
+        Scene::from_str(&t, "t.yaml", Path::new("."))
+    };
+    let scene = with("2").expect("valid scene");
+    assert_eq!(scene.file.solver.load_steps, 8);
+    for st in &scene.stages {
+        let expected = if st.name.starts_with("fill_") { 2 } else { 8 };
+        assert_eq!(st.load_steps, expected, "{}", st.name);
+    }
+    let err = message(with("0"));
+    assert!(err.contains("mesh.cfrd.fill_load_steps"), "{err}");
+}

@@ -369,7 +369,7 @@ fn schedule_stages(schedule: &[CfrdStage], src: &MeshSource) -> Vec<StageSpec> {
                     .collect(),
                 ..LoadsSpec::default()
             },
-            load_steps: None,
+            load_steps: st.load_steps,
         })
         .collect()
 }

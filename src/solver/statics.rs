@@ -22,7 +22,9 @@ use super::state_codec;
 use crate::element::hex8::{face_pressure_load, gravity_load, Hex8Geometry};
 use crate::element::interface8::Interface8Geometry;
 use crate::element::interface_frame::FrameAxes;
-use crate::linalg::petsc::{Gather, Matrix, Petsc, PetscError, Snes, SnesOutcome, SnesProblem, Vector};
+use crate::linalg::petsc::{
+    CanonicalSettings, Gather, Matrix, Petsc, PetscError, Snes, SnesOutcome, SnesProblem, Vector,
+};
 use crate::material::BlockMaterial;
 use crate::mesh::Mesh;
 use crate::parallel::{any_error, exact_norm2, exact_sum, sum_u64};
@@ -143,6 +145,9 @@ pub struct SolveReport {
     pub cutbacks: u32,
     /// Newton iterations of each converged step.
     pub newton_per_step: Vec<u32>,
+    /// Numeric factorizations of the canonical direct solver.
+    #[serde(default)]
+    pub factorizations: u64,
 }
 
 /// Rank-local results in input order of the owned nodes and elements.
@@ -366,7 +371,10 @@ impl<'a> StaticProblem<'a> {
         // options (scene and command line) are applied here, so a bad one is an input error
         let canonical = match scene.file.solver.linear_solver {
             LinearSolver::Iterative => None,
-            LinearSolver::CanonicalLu => Some(disc.canonical_dofs()),
+            LinearSolver::CanonicalLu => Some(CanonicalSettings {
+                dofs: disc.canonical_dofs(),
+                reuse_factorization: scene.file.solver.reuse_factorization,
+            }),
         };
         let snes = Snes::new(
             petsc,
@@ -537,16 +545,24 @@ impl<'a> StaticProblem<'a> {
         }
         let lo = self.disc.dof_lo;
         let u_own: Vec<f64> = self.u.read(|s| s.to_vec())?;
-        let mut fixed = self.scene_fixed.clone();
+        // the nodes not yet placed are held where they are; that replaces any scene constraint
+        let mut held: Vec<(i32, f64)> = Vec::new();
         for &n in &self.disc.owned_nodes {
             if !self.node_active[n as usize] {
                 for c in 0..3 {
                     let d = self.disc.dof(n, c);
-                    fixed.retain(|f| f.0 != d);
-                    fixed.push((d, u_own[d as usize - lo]));
+                    held.push((d, u_own[d as usize - lo]));
                 }
             }
         }
+        held.sort_by_key(|f| f.0);
+        let mut fixed: Vec<(i32, f64)> = self
+            .scene_fixed
+            .iter()
+            .copied()
+            .filter(|f| held.binary_search_by_key(&f.0, |h| h.0).is_err())
+            .collect();
+        fixed.extend(held);
         fixed.sort_by_key(|f| f.0);
         fixed.dedup_by_key(|f| f.0);
         self.fixed_start = fixed.iter().map(|&(d, _)| u_own[d as usize - lo]).collect();
@@ -939,6 +955,7 @@ impl<'a> StaticProblem<'a> {
             targets,
             ..
         } = step;
+        report.factorizations += snes.take_factorizations();
         problem.snes = Some(snes);
         report.solve_seconds += (t0.elapsed().as_secs_f64() - assembly_seconds).max(0.0);
         let (outcome, iterations) = solved?;
