@@ -27,7 +27,9 @@ declare -A mesh=(
 # canonical LU now splits those rows off (linalg::petsc::CanonicalLu), which keeps the
 # factorization to the placed mesh and makes MUMPS's results the same on 1 and 2 ranks too.
 # The fine mesh (256k DOFs) uses the same solver: on 2 ranks its first 8 fill stages took 2.0 min
-# and its first 15 8.3 min (with the partition balanced per construction band), where BoomerAMG
+# and its first 15 8.3 min (with the partition balanced per construction band; with the factors
+# reused within a stage, solver.reuse_factorization, the first 8 took 1.6 min and the first 14
+# 4.6 min), where BoomerAMG
 # (-pc_type hypre) took 13.0 min for the first 8; the default GAMG failed in the first fill stage
 # (PC failed, SUBPC_ERROR; with -pc_gamg_threshold 0 in the third). The factorization's memory
 # once the whole fine mesh is placed has not been measured (1.2 GB per rank at fill_016).

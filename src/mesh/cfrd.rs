@@ -145,8 +145,9 @@ pub struct CfrdSpec {
     /// Number of impoundment stages (≥ 1).
     pub impoundment_stages: usize,
     /// Load steps of each fill-layer stage (≥ 1); default: `solver.load_steps`, as for the other
-    /// stages. A thin layer needs fewer steps than a thick one: the seed places its 86 layers
-    /// (about 2 m each) in one step each.
+    /// stages. The seed places its 86 layers (about 2 m each) in one step each. Fewer steps are
+    /// not cheaper with the GP rockfill: on the fine seed mesh two steps per layer took about
+    /// twice as long as eight (`scripts/make_seed_scenes.sh`), as a new layer starts unconfined.
     pub fill_load_steps: Option<u32>,
     /// Unit weight of water γ_w (N/m³) for the impoundment loads. Default 9810.
     pub water_unit_weight: f64,
