@@ -81,9 +81,10 @@ enum Command {
     /// absolute and relative difference of every field of every common step. With
     /// `--tolerance`, exits with code 1 when a relative difference exceeds it.
     Compare {
-        /// First results file (the reference).
+        /// First results file or run directory (the reference).
         a: PathBuf,
-        /// Second results file.
+        /// Second results file or run directory; steps are matched by stage and time, so a run
+        /// restarted from a checkpoint compares with the uninterrupted one.
         b: PathBuf,
         /// Largest accepted relative difference (max |a − b| / max |a|).
         #[arg(long)]

@@ -485,7 +485,7 @@ pub fn overlay_slab_profiles(runs: &[(String, PathBuf)], png: &Path) -> Result<u
         }),
     ];
     let mut figure =
-        Figure::new("Slab at the central section by interface model (seed Figs. 8, 9)").columns(2);
+        Figure::new("Slab at the central section, one line per run (seed Figs. 8, 9)").columns(2);
     for (title, x_label, pick) in quantities {
         for state in &states {
             let mut panel = Panel::new(format!("{title}, {state}"), x_label, "z (m)");

@@ -210,6 +210,7 @@ pub fn run_scene(
     let mut failure = None;
     let mut stages_written = 0usize;
     for (k, stage) in scene.stages.iter().enumerate().skip(first_stage) {
+        let stage_start = Instant::now();
         say(&format!(
             "stage {}/{n_stages} '{}': {} load step(s)",
             k + 1,
@@ -248,6 +249,9 @@ pub fn run_scene(
             message: format!("writing results: {m}"),
         })?;
         stages_written += 1;
+        report
+            .stage_seconds
+            .push((stage.name.clone(), stage_start.elapsed().as_secs_f64()));
         if checkpoints {
             let t0 = Instant::now();
             let written = checkpoint::write(world, &ckpt, scene, &problem, &report);
@@ -352,6 +356,14 @@ pub fn run_scene(
     summary.interface_slipping = counts.slipping;
     summary.restarted_after_stage = opts.restart.as_ref().map(|_| first_stage as u64);
     summary.checkpoint_seconds = crate::parallel::max_f64(world, ckpt_seconds);
+    summary.stage_seconds = report
+        .stage_seconds
+        .iter()
+        .map(|(stage, seconds)| crate::io::summary::StageSeconds {
+            stage: stage.clone(),
+            seconds: *seconds,
+        })
+        .collect();
     summary.gather_peak_memory(world);
     if rank == 0 {
         summary

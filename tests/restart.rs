@@ -136,6 +136,15 @@ fn restart_after_stage_two_is_bitwise_exact() {
         text(&o)
     );
     assert_bitwise(&d.join("full/results.h5"), &d.join("rest/results.h5"), 2);
+    // `cfrd compare` matches the restarted run's steps to the full run's by stage and time
+    let o = cfrd(d, &["compare", "full", "rest", "--tolerance", "0"]);
+    assert!(o.status.success(), "{}", text(&o));
+    let out = text(&o);
+    for stage in 3..=STAGES {
+        let row = format!("| {stage:06} = {:06} (fill_{stage}) | displacement |", stage - 2);
+        assert!(out.contains(&row), "no row '{row}' in\n{out}");
+    }
+    assert!(out.contains("largest relative difference: 0.000e0"), "{out}");
     // the restarted results hold the remaining stages, at their stage times
     let steps: Vec<_> = layout(&d.join("rest/results.h5"))
         .into_iter()
@@ -158,6 +167,28 @@ fn restart_after_stage_two_is_bitwise_exact() {
         assert_eq!(s_full[key], s_rest[key], "{key}");
     }
     assert!(s_full.get("restarted_after_stage").is_none());
+    // so do the stage times: the restarted run lists the stages of both parts
+    let stage_times = |s: &serde_json::Value| -> Vec<(String, f64)> {
+        s["stage_seconds"]
+            .as_array()
+            .expect("stage_seconds")
+            .iter()
+            .map(|e| {
+                (
+                    e["stage"].as_str().unwrap().to_string(),
+                    e["seconds"].as_f64().unwrap(),
+                )
+            })
+            .collect()
+    };
+    let (t_full, t_rest) = (stage_times(&s_full), stage_times(&s_rest));
+    let names = |t: &[(String, f64)]| t.iter().map(|(n, _)| n.clone()).collect::<Vec<_>>();
+    assert_eq!(
+        names(&t_full),
+        (1..=STAGES).map(|k| format!("fill_{k}")).collect::<Vec<_>>()
+    );
+    assert_eq!(names(&t_rest), names(&t_full));
+    assert!(t_rest.iter().all(|(_, s)| *s > 0.0), "{t_rest:?}");
 }
 
 #[test]

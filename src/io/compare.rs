@@ -2,7 +2,11 @@
 //! on 1 and 2 ranks, or before and after a change). Serial HDF5; no MPI needed.
 //!
 //! For every step present in both files and every `f64` field of that step present in both,
-//! the maximum absolute difference and the field's maximum magnitude are reported. The
+//! the maximum absolute difference and the field's maximum magnitude are reported. Steps are
+//! matched by their `stage` and `time` attributes (a run restarted from a checkpoint numbers
+//! its steps from 0 again, so its step of stage `fill_3` is the full run's step of `fill_3`);
+//! steps without them are matched by group name. Either argument may be a run's output
+//! directory, which stands for its `results.h5`. The
 //! relative difference divides the difference by the largest magnitude of any field of the
 //! step with the same units (`max |a − b| / scale`), so a field that is zero up to round-off
 //! (e.g. the slip of a joint loaded normally) is measured against its physical scale (the
@@ -14,7 +18,8 @@ use std::path::Path;
 /// The difference of one field of one step.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FieldDiff {
-    /// Step group name (e.g. `000003`) and its stage attribute.
+    /// Step group name (e.g. `000003`; `000003 = 000001` when the second file numbers the
+    /// matched step differently) and its stage attribute.
     pub step: String,
     /// Field (dataset) name.
     pub field: String,
@@ -88,15 +93,45 @@ pub(crate) fn stage_name(g: &hdf5::Group) -> Option<String> {
         .ok()
 }
 
-/// Compares the fields of every step that both results files hold.
+/// The key a step is matched by: its stage name and time (exact bits) when it has both
+/// attributes, else its group name.
+fn step_key(f: &hdf5::File, name: &str) -> Result<String, String> {
+    let g = f.group(&format!("/steps/{name}")).map_err(|e| e.to_string())?;
+    let time = g.attr("time").and_then(|x| x.read_scalar::<f64>()).ok();
+    Ok(match (stage_name(&g), time) {
+        (Some(stage), Some(t)) => format!("{stage}@{:016x}", t.to_bits()),
+        _ => name.to_string(),
+    })
+}
+
+/// A results file, or the `results.h5` of a run's output directory.
+fn results_file(p: &Path) -> std::path::PathBuf {
+    if p.is_dir() {
+        p.join("results.h5")
+    } else {
+        p.to_path_buf()
+    }
+}
+
+/// Compares the fields of every step that both results files hold (matched as the module
+/// docs say). `a` and `b` are results files or run directories.
 pub fn compare_results(a: &Path, b: &Path) -> Result<Vec<FieldDiff>, String> {
+    let (a, b) = (results_file(a), results_file(b));
+    let (a, b) = (a.as_path(), b.as_path());
     let (fa, fb) = (open(a)?, open(b)?);
     let (sa, sb) = (step_names(&fa, a)?, step_names(&fb, b)?);
+    let mut keys_b = std::collections::HashMap::new();
+    for name in &sb {
+        keys_b.entry(step_key(&fb, name)?).or_insert(name.clone());
+    }
     let mut out = Vec::new();
-    for step in sa.iter().filter(|s| sb.contains(s)) {
+    for step in &sa {
+        let Some(step_b) = keys_b.get(&step_key(&fa, step)?) else {
+            continue;
+        };
         let (ga, gb) = (
             fa.group(&format!("/steps/{step}")).map_err(|e| e.to_string())?,
-            fb.group(&format!("/steps/{step}")).map_err(|e| e.to_string())?,
+            fb.group(&format!("/steps/{step_b}")).map_err(|e| e.to_string())?,
         );
         let stage = stage_name(&ga).unwrap_or_default();
         let mut fields = ga.member_names().map_err(|e| e.to_string())?;
@@ -114,7 +149,7 @@ pub fn compare_results(a: &Path, b: &Path) -> Result<Vec<FieldDiff>, String> {
             let (va, vb) = (read(&ga, a)?, read(&gb, b)?);
             if va.len() != vb.len() {
                 return Err(format!(
-                    "/steps/{step}/{field}: {} values in {} but {} in {}",
+                    "/steps/{step}/{field}: {} values in {} but {} in {} (step {step_b})",
                     va.len(),
                     a.display(),
                     vb.len(),
@@ -130,7 +165,11 @@ pub fn compare_results(a: &Path, b: &Path) -> Result<Vec<FieldDiff>, String> {
                 .map(|s| s.to_string())
                 .unwrap_or_default();
             step_diffs.push(FieldDiff {
-                step: format!("{step} ({stage})"),
+                step: if step_b == step {
+                    format!("{step} ({stage})")
+                } else {
+                    format!("{step} = {step_b} ({stage})")
+                },
                 field,
                 max_abs_diff,
                 max_abs,

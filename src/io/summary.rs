@@ -174,6 +174,16 @@ impl PhaseTimer {
     }
 }
 
+/// The wall time of one completed stage ([`RunSummary::stage_seconds`]).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StageSeconds {
+    /// Stage name.
+    pub stage: String,
+    /// Wall-clock seconds.
+    pub seconds: f64,
+}
+
 /// The run summary.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -226,6 +236,11 @@ pub struct RunSummary {
     /// Wall-clock seconds spent writing checkpoints (max over ranks).
     #[serde(default)]
     pub checkpoint_seconds: f64,
+    /// Wall-clock seconds of each completed stage, from its start to its results written
+    /// (checkpoint not included; rank 0's clock). A restarted run lists the stages of the runs
+    /// before it too (they are carried in the checkpoint), so a run in parts has them all.
+    #[serde(default)]
+    pub stage_seconds: Vec<StageSeconds>,
     /// Peak resident memory (bytes), maximum over ranks.
     pub peak_memory_bytes: u64,
     /// Peak resident memory (bytes) of each rank.
@@ -354,6 +369,10 @@ mod tests {
             interface_slipping: 3,
             restarted_after_stage: Some(2),
             checkpoint_seconds: 0.25,
+            stage_seconds: vec![StageSeconds {
+                stage: "fill_1".into(),
+                seconds: 1.25,
+            }],
             peak_memory_bytes: 2048,
             peak_memory_bytes_per_rank: vec![1024, 2048],
         };
@@ -363,6 +382,7 @@ mod tests {
         let value: serde_json::Value = serde_json::from_str(&text).unwrap();
         assert_eq!(value["phase_seconds"]["solve"], 1.5);
         assert_eq!(value["peak_memory_bytes_per_rank"][1], 2048);
+        assert_eq!(value["stage_seconds"][0]["stage"], "fill_1");
         let bad = text.replacen("\"ranks\"", "\"rank_count\"", 1);
         assert!(serde_json::from_str::<RunSummary>(&bad).is_err());
         let dir = tempfile::tempdir().unwrap();

@@ -148,6 +148,9 @@ pub struct SolveReport {
     /// Numeric factorizations of the canonical direct solver.
     #[serde(default)]
     pub factorizations: u64,
+    /// Wall-clock seconds of each completed stage (name, seconds), for the run summary.
+    #[serde(default)]
+    pub stage_seconds: Vec<(String, f64)>,
 }
 
 /// Rank-local results in input order of the owned nodes and elements.
