@@ -707,7 +707,13 @@ unsafe extern "C" fn snes_objective<P: SnesProblem>(
 /// DOFs, README "Seed dam status"). With the decoupled rows split off both give the same results
 /// bit for bit on 1 and 2 ranks (tests `cfrd_dam`); without the split, MUMPS's 1-rank solves
 /// differed from its 2-rank ones in the last bits (measured), which the path-dependent
-/// plasticity carried to 6e-3 in the results of the coarse seed run.
+/// plasticity carried to 6e-3 in the results of the coarse seed run. MUMPS orders the block
+/// with PORD: Debian's MUMPS is built without METIS and SCOTCH (`-canonical_mat_mumps_icntl_7
+/// 5` or `3` falls back, the parallel analysis `icntl_28 2` fails with INFO(1) = −38). At the
+/// first slab stage of the medium seed dam (restarted after fill_017) the factors held 12.9 M
+/// entries with PORD, 14.2 M with AMF and 18.4 M with AMD or QAMD; a METIS nested dissection
+/// handed to MUMPS as its pivot order (a registered PETSc ordering, tried and removed) gave
+/// 12.6 M, 2 % fewer, not worth a second code path.
 ///
 /// Reuse of factors (`solver.reuse_factorization`, on by default). Within a stage the Jacobian
 /// changes little from one Newton iteration or load step to the next, and on the fine seed mesh
