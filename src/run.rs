@@ -4,7 +4,7 @@
 //! stop together with exit code 2 and rank 0 prints the message.
 
 use crate::io::hdf5_out::{strain_output_components, OwnedMesh, ResultsFile, StepInfo};
-use crate::io::summary::{Phase, PhaseTimer, RunSummary};
+use crate::io::summary::{Phase, PhaseTimer, RunSummary, StageSeconds};
 use crate::linalg::petsc::Petsc;
 use crate::parallel::{any_error, broadcast_vec, EXIT_INPUT, EXIT_SOLVER};
 use crate::scene::schema::CheckpointMode;
@@ -249,9 +249,10 @@ pub fn run_scene(
             message: format!("writing results: {m}"),
         })?;
         stages_written += 1;
-        report
-            .stage_seconds
-            .push((stage.name.clone(), stage_start.elapsed().as_secs_f64()));
+        report.stage_seconds.push(StageSeconds {
+            stage: stage.name.clone(),
+            seconds: stage_start.elapsed().as_secs_f64(),
+        });
         if checkpoints {
             let t0 = Instant::now();
             let written = checkpoint::write(world, &ckpt, scene, &problem, &report);
@@ -356,14 +357,7 @@ pub fn run_scene(
     summary.interface_slipping = counts.slipping;
     summary.restarted_after_stage = opts.restart.as_ref().map(|_| first_stage as u64);
     summary.checkpoint_seconds = crate::parallel::max_f64(world, ckpt_seconds);
-    summary.stage_seconds = report
-        .stage_seconds
-        .iter()
-        .map(|(stage, seconds)| crate::io::summary::StageSeconds {
-            stage: stage.clone(),
-            seconds: *seconds,
-        })
-        .collect();
+    summary.stage_seconds = report.stage_seconds.clone();
     summary.gather_peak_memory(world);
     if rank == 0 {
         summary

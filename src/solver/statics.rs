@@ -148,9 +148,9 @@ pub struct SolveReport {
     /// Numeric factorizations of the canonical direct solver.
     #[serde(default)]
     pub factorizations: u64,
-    /// Wall-clock seconds of each completed stage (name, seconds), for the run summary.
+    /// Wall-clock seconds of each completed stage, for the run summary.
     #[serde(default)]
-    pub stage_seconds: Vec<(String, f64)>,
+    pub stage_seconds: Vec<crate::io::summary::StageSeconds>,
 }
 
 /// Rank-local results in input order of the owned nodes and elements.
