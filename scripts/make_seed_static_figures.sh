@@ -15,8 +15,9 @@
 #   minutes on 2 cores), overlays their slab profiles as seed_medium_slab.png, copies
 #   their figures as seed_medium_<model>_fig*.png and adds their rows to seed_static_runs.csv.
 #   FINE=DIR takes the fine hyperbolic run made with scripts/run_in_parts.sh (it takes hours on
-#   2 cores, so it is not started here): copies the figures of its last part as
-#   seed_fine_hyperbolic_fig*.png, overlays the hyperbolic slab profiles of the three meshes as
+#   2 cores, so it is not started here): draws the figures of all its parts together
+#   (`cfrd profiles`, into DIR/profiles; each part's own figures hold only the stages it ran),
+#   copies them as seed_fine_hyperbolic_fig*.png, overlays the hyperbolic slab profiles of the three meshes as
 #   seed_hyperbolic_meshes.png and adds a row fine_hyperbolic with the wall time summed over
 #   DIR/parts.csv and the largest per-rank memory of the parts.
 # The scenes use the canonical LU (solver.linear_solver: canonical_lu), so the 1- and 2-rank
@@ -75,10 +76,12 @@ fine=""
 if [ -n "${FINE:-}" ]; then
     fine="$(ls -d "$FINE"/part_* | sort -V | tail -n 1)"
     [ -f "$fine/summary.json" ] || { echo "$fine has not finished (no summary.json)" >&2; exit 1; }
-    for f in "$fine"/fig*.png; do
+    mapfile -t parts < <(ls -d "$FINE"/part_* | sort -V)
+    "$bin" profiles inputs/scenes/seed_fine_hyperbolic.yaml "${parts[@]}" -o "$FINE/profiles"
+    for f in "$FINE"/profiles/fig*.png; do
         cp "$f" "$figures/seed_fine_hyperbolic_$(basename "$f")"
     done
-    "$bin" overlay coarse="$runs/hyperbolic_2" medium="$runs/medium_hyperbolic_2" fine="$fine" \
+    "$bin" overlay coarse="$runs/hyperbolic_2" medium="$runs/medium_hyperbolic_2" fine="$FINE/profiles" \
         -o "$figures/seed_hyperbolic_meshes.png"
 fi
 {

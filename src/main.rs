@@ -51,9 +51,13 @@ enum Command {
         /// `results.h5` holds the stages run from there.
         #[arg(long, value_name = "CHECKPOINT")]
         restart: Option<PathBuf>,
-        /// Stop after this many completed stages, once their checkpoint is written (testing).
-        #[arg(long, hide = true, value_name = "K")]
-        stop_after_stage: Option<usize>,
+        /// End the run cleanly after stage K of the schedule (1-based), or with `+N` after the
+        /// N-th stage this run runs (or at the end of the schedule): the results of the stages run and the checkpoint are
+        /// written, and `summary.json` records `stopped_after_stage`; continue with `--restart
+        /// <out>/checkpoint.h5` (a run in parts under a job time limit,
+        /// `scripts/run_in_parts.sh`).
+        #[arg(long, value_name = "K|+N", value_parser = parse_stop_after)]
+        stop_after_stage: Option<cfrd::run::StopAfter>,
     },
     /// Validate a scene (YAML, mesh, cross-references) without solving.
     Check {
@@ -100,6 +104,20 @@ enum Command {
         #[arg(short = 'o', long = "out")]
         out: PathBuf,
     },
+    /// Write the seed-figure tables and plots (`output.profiles`, seed Figs. 7–11) of a run from
+    /// its results: of a run made in parts (restarted from checkpoints, each part's
+    /// `results.h5` holding its own stages), list the parts in order, and the probe histories
+    /// cover every stage: `cfrd profiles dam.yaml out/part_1 out/part_2 -o out/figures`.
+    Profiles {
+        /// Scene file (YAML) of the run, with `output.profiles`.
+        scene: PathBuf,
+        /// Results files or run directories, in the order they ran.
+        #[arg(required = true)]
+        runs: Vec<PathBuf>,
+        /// Output directory of the tables and plots.
+        #[arg(short = 'o', long = "out")]
+        out: PathBuf,
+    },
     /// Run material-point tests from a YAML file: drained triaxial (monotonic, cyclic),
     /// oedometer, isotropic compression, interface direct shear (CNL, CNS, monotonic, cyclic,
     /// model comparison); writes CSV tables and a PNG figure (`inputs/point/README.md`).
@@ -110,6 +128,22 @@ enum Command {
         #[arg(short = 'o', long = "out", default_value = "out/point")]
         out: PathBuf,
     },
+}
+
+/// Parses `--stop-after-stage`: `K` (a stage of the schedule) or `+N` (stages of this run).
+fn parse_stop_after(s: &str) -> Result<cfrd::run::StopAfter, String> {
+    let (relative, digits) = match s.strip_prefix('+') {
+        Some(d) => (true, d),
+        None => (false, s),
+    };
+    let n: usize = digits
+        .parse()
+        .map_err(|_| format!("'{s}': expected a stage number K or +N"))?;
+    Ok(if relative {
+        cfrd::run::StopAfter::Stages(n)
+    } else {
+        cfrd::run::StopAfter::Stage(n)
+    })
 }
 
 /// Splits PETSc options (`-word` with more than one letter after a single dash, plus its value
@@ -195,6 +229,16 @@ fn main() -> ExitCode {
                 }
             }
         }
+        Command::Profiles { scene, runs, out } => match profiles_of_parts(&scene, &runs, &out) {
+            Ok(n) => {
+                println!("{n} file(s) from {} run(s) in {}", runs.len(), out.display());
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("error: {e}");
+                ExitCode::from(2)
+            }
+        },
         Command::Partition { scene, parts, out } => match partition_ahead(&scene, parts, &out) {
             Ok(msg) => {
                 println!("{msg}");
@@ -274,6 +318,25 @@ fn main() -> ExitCode {
             Ok(())
         }),
     }
+}
+
+/// `cfrd profiles`: the profile tables and plots of the runs `runs` (results files or run
+/// directories, in order) of `scene`, written into `out`; returns the number of files.
+fn profiles_of_parts(
+    scene: &std::path::Path,
+    runs: &[PathBuf],
+    out: &std::path::Path,
+) -> Result<usize, String> {
+    let s = cfrd::scene::Scene::load(scene).map_err(|e| e.to_string())?;
+    let spec = s.file.output.profiles.as_ref().ok_or_else(|| {
+        format!(
+            "{}: output.profiles: not set, so there is nothing to draw",
+            scene.display()
+        )
+    })?;
+    let files: Vec<PathBuf> = runs.iter().map(|r| cfrd::io::compare::results_file(r)).collect();
+    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    cfrd::run::write_profiles_from_results(&s, spec, &files, out).map(|f| f.len())
 }
 
 /// `cfrd partition`: METIS on the scene's mesh (each construction band balanced, as `cfrd run`

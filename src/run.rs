@@ -49,8 +49,19 @@ pub struct RunOptions {
     pub verbose: bool,
     /// Checkpoint to restart from (`--restart`): the run continues after its last stage.
     pub restart: Option<PathBuf>,
-    /// Stop after this many completed stages, once their checkpoint is written (for tests).
-    pub stop_after_stage: Option<usize>,
+    /// End the run cleanly after a stage, once its results and checkpoint are written
+    /// (`--stop-after-stage`): a run in parts under a job time limit.
+    pub stop_after_stage: Option<StopAfter>,
+}
+
+/// Where a run in parts ends (`--stop-after-stage K` or `+N`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StopAfter {
+    /// After stage K of the schedule (1-based).
+    Stage(usize),
+    /// After the N-th stage this run runs (counted from the restart's stage, if any), or at the
+    /// end of the schedule if that comes first.
+    Stages(usize),
 }
 
 /// Loads a scene (or the embedded default) collectively.
@@ -187,6 +198,25 @@ pub fn run_scene(
         Some(mode) => mode == CheckpointMode::Stage,
         None => !scene.file.stages.is_empty(),
     };
+    let stop_after_stage = opts.stop_after_stage.map(|s| match s {
+        StopAfter::Stage(k) => k,
+        StopAfter::Stages(n) => (first_stage + n).min(scene.stages.len()),
+    });
+    if let Some(stop) = stop_after_stage {
+        let n = scene.stages.len();
+        if !checkpoints {
+            return Err(input(format!(
+                "--stop-after-stage {stop}: the scene writes no checkpoints (output.checkpoint), \
+                 so the run could not be continued"
+            )));
+        }
+        if stop <= first_stage || stop > n {
+            return Err(input(format!(
+                "--stop-after-stage {stop}: not one of the stages this run runs ({} to {n})",
+                first_stage + 1
+            )));
+        }
+    }
     let ckpt = out_dir.join(CHECKPOINT_FILE);
     let mut ckpt_seconds = 0.0;
     timer.start(Phase::Output);
@@ -209,6 +239,7 @@ pub fn run_scene(
     let has_interfaces = scene.block_interface.iter().any(Option::is_some);
     let mut failure = None;
     let mut stages_written = 0usize;
+    let mut stopped_after = None;
     for (k, stage) in scene.stages.iter().enumerate().skip(first_stage) {
         let stage_start = Instant::now();
         say(&format!(
@@ -263,8 +294,13 @@ pub fn run_scene(
             ckpt_seconds += t0.elapsed().as_secs_f64();
         }
         timer.stop();
-        if opts.stop_after_stage == Some(k + 1) {
-            say(&format!("stopped after stage {} (--stop-after-stage)", k + 1));
+        if stop_after_stage == Some(k + 1) && k + 1 < n_stages {
+            say(&format!(
+                "stopped after stage {} of {n_stages} (--stop-after-stage); continue with --restart {}",
+                k + 1,
+                ckpt.display()
+            ));
+            stopped_after = Some((k + 1) as u64);
             break;
         }
     }
@@ -290,7 +326,7 @@ pub fn run_scene(
             // rank 0 reads the closed results file back (serial HDF5) and writes the tables and
             // plots
             let written = if rank == 0 {
-                write_profiles_from_results(scene, spec, &h5, &out_dir)
+                write_profiles_from_results(scene, spec, std::slice::from_ref(&h5), &out_dir)
             } else {
                 Ok(Vec::new())
             };
@@ -356,6 +392,7 @@ pub fn run_scene(
     summary.interface_open = counts.open;
     summary.interface_slipping = counts.slipping;
     summary.restarted_after_stage = opts.restart.as_ref().map(|_| first_stage as u64);
+    summary.stopped_after_stage = stopped_after;
     summary.checkpoint_seconds = crate::parallel::max_f64(world, ckpt_seconds);
     summary.stage_seconds = report.stage_seconds.clone();
     summary.gather_peak_memory(world);
@@ -411,37 +448,53 @@ fn write_step(
     Ok(())
 }
 
-/// Reads every stage of a closed results file (serial HDF5) and writes the profile tables and
-/// plots of [`crate::profiles`] into `dir`.
+/// Reads every stage of the closed results files `h5s` (serial HDF5), in order, and writes the
+/// profile tables and plots of [`crate::profiles`] into `dir`. Several files are the parts of a
+/// run restarted from checkpoints (`cfrd profiles`): their stages are joined in the order given,
+/// and a stage found again in a later file replaces the earlier one (a part that wrote a stage's
+/// results but was killed before its checkpoint, so the next part ran that stage again).
 pub fn write_profiles_from_results(
     scene: &Scene,
     spec: &crate::profiles::ProfilesSpec,
-    h5: &Path,
+    h5s: &[PathBuf],
     dir: &Path,
 ) -> Result<Vec<PathBuf>, String> {
     use crate::io::compare::{open, stage_name, step_names};
-    let file = open(h5)?;
-    let names = step_names(&file, h5)?;
-    let mut stages = Vec::with_capacity(names.len());
-    for name in names {
-        let g = file.group(&format!("/steps/{name}")).map_err(|e| e.to_string())?;
-        let read = |field: &str| -> Result<Vec<f64>, String> {
-            if !g.link_exists(field) {
-                return Ok(Vec::new());
-            }
-            g.dataset(field)
-                .and_then(|d| d.read_raw::<f64>())
-                .map_err(|e| format!("{}: /steps/{name}/{field}: {e}", h5.display()))
-        };
-        let stage = stage_name(&g).unwrap_or_else(|| name.clone());
-        stages.push(crate::profiles::StageFields {
-            name: stage,
-            displacement: read("displacement")?,
-            stress: read("stress")?,
-            interface_traction: read("interface_traction")?,
-            interface_jump: read("interface_jump")?,
-            interface_opening: read("interface_opening")?,
-        });
+    let mut stages: Vec<crate::profiles::StageFields> = Vec::new();
+    for h5 in h5s {
+        let file = open(h5)?;
+        let elements = file
+            .dataset("/mesh/element_ids")
+            .map(|d| d.size())
+            .map_err(|e| format!("{}: /mesh/element_ids: {e}", h5.display()))?;
+        if elements != scene.mesh.elements.len() {
+            return Err(format!(
+                "{}: {elements} elements, the scene's mesh has {}: results of another scene?",
+                h5.display(),
+                scene.mesh.elements.len()
+            ));
+        }
+        for name in step_names(&file, h5)? {
+            let g = file.group(&format!("/steps/{name}")).map_err(|e| e.to_string())?;
+            let read = |field: &str| -> Result<Vec<f64>, String> {
+                if !g.link_exists(field) {
+                    return Ok(Vec::new());
+                }
+                g.dataset(field)
+                    .and_then(|d| d.read_raw::<f64>())
+                    .map_err(|e| format!("{}: /steps/{name}/{field}: {e}", h5.display()))
+            };
+            let stage = stage_name(&g).unwrap_or_else(|| name.clone());
+            stages.retain(|s| s.name != stage);
+            stages.push(crate::profiles::StageFields {
+                name: stage,
+                displacement: read("displacement")?,
+                stress: read("stress")?,
+                interface_traction: read("interface_traction")?,
+                interface_jump: read("interface_jump")?,
+                interface_opening: read("interface_opening")?,
+            });
+        }
     }
     crate::profiles::write_profiles(&scene.mesh, spec, &stages, dir).map_err(|e| e.to_string())
 }

@@ -419,3 +419,120 @@ fn reused_factors_give_the_results_of_fresh_factors() {
         "{lagged:.3e} > {tolerance:.3e}"
     );
 }
+
+/// A run made in parts (issue 4, acceptance 3 and 5; how the fine seed mesh is run): the small
+/// dam stopped one stage after its first slab stage, restarted for one more stage
+/// (`--stop-after-stage +1`) and restarted again to the end. Each part's results hold its own
+/// stages, so the last part's probe history (seed Fig. 10) lacks the stages before it; `cfrd profiles` over both parts writes every table of
+/// the uninterrupted run byte for byte. A scene without `output.profiles`, or of another mesh,
+/// is refused with exit code 2 and a message that names it.
+#[test]
+fn profiles_of_a_run_in_parts_equal_the_uninterrupted_runs() {
+    let dir = tempdir();
+    let d = dir.path();
+    // the canonical LU: bitwise the same results run after run (MUMPS distributed over the
+    // ranks schedules its factorization by the ranks' load, so its last bits vary from run to
+    // run on a busy machine)
+    let yaml = scene().replace(
+        "{ petsc_options: '-ksp_type preonly -pc_type lu -pc_factor_mat_solver_type mumps' }",
+        "{ linear_solver: canonical_lu }",
+    );
+    assert!(yaml.contains("canonical_lu"));
+    std::fs::write(d.join("dam.yaml"), &yaml).unwrap();
+    let spec: CfrdSpec = serde_yaml::from_str(MESH).unwrap();
+    let model = cfrd_mesh(&spec).unwrap();
+    let slab_1 = model
+        .stages
+        .iter()
+        .position(|s| s.name.starts_with("slab"))
+        .expect("a slab stage");
+    let stop = (slab_1 + 2).to_string();
+    assert!(slab_1 + 2 < model.stages.len());
+    // three parts: to one stage after slab stage I, one more stage (`+1`), the rest
+    let runs: [&[&str]; 4] = [
+        &["run", "dam.yaml", "-o", "full", "-q"],
+        &["run", "dam.yaml", "-o", "part", "-q", "--stop-after-stage", &stop],
+        &[
+            "run",
+            "dam.yaml",
+            "-o",
+            "mid",
+            "-q",
+            "--stop-after-stage",
+            "+1",
+            "--restart",
+            "part/checkpoint.h5",
+        ],
+        &[
+            "run",
+            "dam.yaml",
+            "-o",
+            "rest",
+            "-q",
+            "--restart",
+            "mid/checkpoint.h5",
+        ],
+    ];
+    for args in runs {
+        let o = cfrd_mpi(2, d, args);
+        assert!(o.status.success(), "{args:?}: {}", text(&o));
+    }
+    let o = cfrd(
+        d,
+        &[
+            "profiles",
+            "dam.yaml",
+            "part",
+            "mid",
+            "rest/results.h5",
+            "-o",
+            "joined",
+        ],
+    );
+    assert!(o.status.success(), "{}", text(&o));
+
+    let csv = |run: &str, name: &str| std::fs::read_to_string(d.join(run).join(name)).unwrap();
+    let mut tables: Vec<String> = std::fs::read_dir(d.join("full"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".csv"))
+        .collect();
+    tables.sort();
+    assert!(tables.contains(&"fig10_probe_I-A.csv".to_string()), "{tables:?}");
+    assert!(tables.len() >= 5, "{tables:?}");
+    for name in &tables {
+        assert_eq!(csv("full", name), csv("joined", name), "{name}");
+    }
+    // the probe's rows: one per stage (zero before the interface is born) in the full run and
+    // the joined parts; only the stages after the restart in the restarted part alone
+    let probe_rows = |run: &str| csv(run, "fig10_probe_I-A.csv").lines().count() - 1;
+    println!(
+        "probe rows: full {}, joined {}, restarted part {}",
+        probe_rows("full"),
+        probe_rows("joined"),
+        probe_rows("rest")
+    );
+    assert_eq!(probe_rows("full"), model.stages.len());
+    assert_eq!(probe_rows("rest"), model.stages.len() - (slab_1 + 3));
+
+    // refused: no output.profiles; results of another mesh
+    let plain = dam_scene(
+        &format!("{{ model: elastic, young: 3.0e8, poisson: 0.3, density: {RHO_FILL} }}"),
+        "{}",
+        "",
+    );
+    std::fs::write(d.join("plain.yaml"), plain).unwrap();
+    std::fs::write(
+        d.join("other.yaml"),
+        yaml.replace("fill_layers: 4", "fill_layers: 5"),
+    )
+    .unwrap();
+    for (yaml, expect) in [
+        ("plain.yaml", "plain.yaml: output.profiles: not set"),
+        ("other.yaml", "results of another scene"),
+    ] {
+        let o = cfrd(d, &["profiles", yaml, "full", "-o", "bad"]);
+        assert_eq!(o.status.code(), Some(2), "{yaml}: {}", text(&o));
+        assert!(text(&o).contains(expect), "{yaml}: {}", text(&o));
+    }
+}

@@ -167,6 +167,10 @@ fn restart_after_stage_two_is_bitwise_exact() {
         assert_eq!(s_full[key], s_rest[key], "{key}");
     }
     assert!(s_full.get("restarted_after_stage").is_none());
+    // the stopped part says so (scripts/run_in_parts.sh continues it); the finished runs do not
+    assert_eq!(summary(&d.join("part"))["stopped_after_stage"], 2);
+    assert!(s_full.get("stopped_after_stage").is_none());
+    assert!(s_rest.get("stopped_after_stage").is_none());
     // so do the stage times: the restarted run lists the stages of both parts
     let stage_times = |s: &serde_json::Value| -> Vec<(String, f64)> {
         s["stage_seconds"]
@@ -326,4 +330,41 @@ fn restart_refuses_other_scenes_and_bad_files() {
     run_ok(2, d, &["run", "none.yaml", "-o", "none", "-q"]);
     assert!(d.join("none/results.h5").exists());
     assert!(!d.join("none/checkpoint.h5").exists());
+    // --stop-after-stage: only a stage this run runs, and only with checkpoints
+    let cases: [(&str, &[&str], &str); 5] = [
+        (
+            "col.yaml",
+            &["--stop-after-stage", "5"],
+            "not one of the stages this run runs (1 to 4)",
+        ),
+        (
+            "col.yaml",
+            &["--stop-after-stage", "0"],
+            "not one of the stages this run runs (1 to 4)",
+        ),
+        (
+            "col.yaml",
+            &["--stop-after-stage", "1", "--restart", "part/checkpoint.h5"],
+            "not one of the stages this run runs (2 to 4)",
+        ),
+        (
+            "col.yaml",
+            &["--stop-after-stage", "+0", "--restart", "part/checkpoint.h5"],
+            "--stop-after-stage 1: not one of the stages this run runs (2 to 4)",
+        ),
+        (
+            "none.yaml",
+            &["--stop-after-stage", "2"],
+            "the scene writes no checkpoints",
+        ),
+    ];
+    for (scene, extra, expected) in cases {
+        let mut args = vec!["run", scene, "-o", "bad_stop", "-q"];
+        args.extend_from_slice(extra);
+        let o = cfrd_mpi(2, d, &args);
+        let t = text(&o);
+        assert_eq!(o.status.code(), Some(2), "{extra:?}: {t}");
+        assert!(t.contains(expected), "{extra:?}: {t}");
+        assert!(!t.contains("panicked"), "{extra:?}: {t}");
+    }
 }

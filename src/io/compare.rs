@@ -105,7 +105,7 @@ fn step_key(f: &hdf5::File, name: &str) -> Result<String, String> {
 }
 
 /// A results file, or the `results.h5` of a run's output directory.
-fn results_file(p: &Path) -> std::path::PathBuf {
+pub fn results_file(p: &Path) -> std::path::PathBuf {
     if p.is_dir() {
         p.join("results.h5")
     } else {

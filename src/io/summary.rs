@@ -233,6 +233,10 @@ pub struct RunSummary {
     /// restart (the run began with the next one).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub restarted_after_stage: Option<u64>,
+    /// For a run ended early with `--stop-after-stage K`: K, the last stage run (the schedule
+    /// is not finished; continue with `--restart <out>/checkpoint.h5`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stopped_after_stage: Option<u64>,
     /// Wall-clock seconds spent writing checkpoints (max over ranks).
     #[serde(default)]
     pub checkpoint_seconds: f64,
@@ -368,6 +372,7 @@ mod tests {
             interface_open: 2,
             interface_slipping: 3,
             restarted_after_stage: Some(2),
+            stopped_after_stage: Some(3),
             checkpoint_seconds: 0.25,
             stage_seconds: vec![StageSeconds {
                 stage: "fill_1".into(),
