@@ -15,8 +15,9 @@
 #   minutes on 2 cores), overlays their slab profiles as seed_medium_slab.png, copies
 #   their figures as seed_medium_<model>_fig*.png and adds their rows to seed_static_runs.csv.
 #   FINE=DIR takes the fine hyperbolic run made with scripts/run_in_parts.sh (it takes hours on
-#   2 cores, so it is not started here): draws the figures of all its parts together
-#   (`cfrd profiles`, into DIR/profiles; each part's own figures hold only the stages it ran),
+#   2 cores, so it is not started here): draws the figures of all its parts that kept their
+#   results together (`cfrd profiles`, into DIR/profiles; each part's own figures hold only
+#   the stages it ran, and a killed part keeps none),
 #   copies them as seed_fine_hyperbolic_fig*.png, overlays the hyperbolic slab profiles of the three meshes as
 #   seed_hyperbolic_meshes.png and adds a row fine_hyperbolic with the wall time summed over
 #   DIR/parts.csv and the largest per-rank memory of the parts.
@@ -76,7 +77,12 @@ fine=""
 if [ -n "${FINE:-}" ]; then
     fine="$(ls -d "$FINE"/part_* | sort -V | tail -n 1)"
     [ -f "$fine/summary.json" ] || { echo "$fine has not finished (no summary.json)" >&2; exit 1; }
-    mapfile -t parts < <(ls -d "$FINE"/part_* | sort -V)
+    # a part that was killed kept no results.h5 (only its checkpoint): its stages are missing
+    # from the probe history
+    parts=()
+    for p in $(ls -d "$FINE"/part_* | sort -V); do
+        if [ -f "$p/results.h5" ]; then parts+=("$p"); else echo "$p: no results.h5 (killed), its stages are not drawn"; fi
+    done
     "$bin" profiles inputs/scenes/seed_fine_hyperbolic.yaml "${parts[@]}" -o "$FINE/profiles"
     for f in "$FINE"/profiles/fig*.png; do
         cp "$f" "$figures/seed_fine_hyperbolic_$(basename "$f")"
