@@ -240,6 +240,8 @@ pub fn run_scene(
     let mut failure = None;
     let mut stages_written = 0usize;
     let mut stopped_after = None;
+    // without a terminal (nohup, a cluster job's log) the bar is not drawn: a line per load step
+    let step_lines = rank == 0 && opts.verbose && !std::io::IsTerminal::is_terminal(&std::io::stderr());
     for (k, stage) in scene.stages.iter().enumerate().skip(first_stage) {
         let stage_start = Instant::now();
         say(&format!(
@@ -259,6 +261,14 @@ pub fn run_scene(
             sopts.max_cutbacks,
             &mut report,
             |lambda, rep| {
+                if step_lines {
+                    eprintln!(
+                        "  λ = {lambda:.3} after {:.0} s ({} Newton iterations, {} cut-backs in the run so far)",
+                        stage_start.elapsed().as_secs_f64(),
+                        rep.newton_iterations,
+                        rep.cutbacks
+                    );
+                }
                 bar.set_position((lambda * stage.load_steps as f64).round() as u64);
                 bar.set_message(format!(
                     "λ = {lambda:.3}, Newton {}, cut-backs {}",

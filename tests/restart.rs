@@ -135,6 +135,11 @@ fn restart_after_stage_two_is_bitwise_exact() {
         "{}",
         text(&o)
     );
+    // no terminal: a progress line per converged load step (at least 2 per stage, one of them
+    // at the stage's end)
+    let lines = |prefix: &str| text(&o).lines().filter(|l| l.starts_with(prefix)).count();
+    assert!(lines("  λ = ") >= 2 * (STAGES - 2), "{}", text(&o));
+    assert_eq!(lines("  λ = 1.000 after"), STAGES - 2, "{}", text(&o));
     assert_bitwise(&d.join("full/results.h5"), &d.join("rest/results.h5"), 2);
     // `cfrd compare` matches the restarted run's steps to the full run's by stage and time
     let o = cfrd(d, &["compare", "full", "rest", "--tolerance", "0"]);
