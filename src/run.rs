@@ -11,7 +11,7 @@ use crate::scene::schema::CheckpointMode;
 use crate::scene::Scene;
 use crate::solver::checkpoint::{self, CHECKPOINT_FILE};
 use crate::solver::discretization::Discretization;
-use crate::solver::statics::{mesh_cells, LocalResults, SolveReport, StaticProblem};
+use crate::solver::statics::{mesh_cells, LoadPath, LocalResults, SolveReport, StaticProblem};
 use mpi::topology::{Communicator, SimpleCommunicator};
 use partition::{partition_elements_by_band, Partition, PartitionFile};
 use std::path::{Path, PathBuf};
@@ -182,22 +182,34 @@ pub fn run_scene(
 
     let sopts = &scene.file.solver;
     let mut report = SolveReport::default();
-    // a restart continues after the checkpoint's last stage (input error if it does not fit)
+    // a restart continues after the checkpoint's last stage, or inside the stage of a step
+    // checkpoint (input error if it does not fit)
     let mut first_stage = 0;
+    let mut resume = None;
     if let Some(path) = &opts.restart {
         let restored = checkpoint::restore(world, path, scene, &mut problem, &mut report);
-        first_stage =
+        (first_stage, resume) =
             any_error(world, restored).map_err(|m| input(format!("restart from {}: {m}", path.display())))?;
-        say(&format!(
-            "restarted from {} after stage {first_stage} '{}'",
-            path.display(),
-            scene.stages[first_stage - 1].name
-        ));
+        say(&match resume {
+            Some(p) => format!(
+                "restarted from {} in stage {} '{}' at λ = {:.3}",
+                path.display(),
+                first_stage + 1,
+                scene.stages[first_stage].name,
+                p.lambda
+            ),
+            None => format!(
+                "restarted from {} after stage {first_stage} '{}'",
+                path.display(),
+                scene.stages[first_stage - 1].name
+            ),
+        });
     }
     let checkpoints = match scene.file.output.checkpoint {
-        Some(mode) => mode == CheckpointMode::Stage,
+        Some(mode) => mode != CheckpointMode::None,
         None => !scene.file.stages.is_empty(),
     };
+    let step_checkpoints = scene.file.output.checkpoint == Some(CheckpointMode::Step);
     let stop_after_stage = opts.stop_after_stage.map(|s| match s {
         StopAfter::Stage(k) => k,
         StopAfter::Stages(n) => (first_stage + n).min(scene.stages.len()),
@@ -250,32 +262,53 @@ pub fn run_scene(
             stage.name,
             stage.load_steps
         ));
-        let begun = problem.begin_stage(k);
-        if let Err(m) = any_error(world, begun) {
-            failure = Some(m);
-            break;
-        }
-        let bar = progress_bar(rank == 0 && opts.verbose, stage.load_steps as u64);
-        let solved = problem.solve_load_steps(
-            stage.load_steps,
-            sopts.max_cutbacks,
-            &mut report,
-            |lambda, rep| {
-                if step_lines {
-                    eprintln!(
-                        "  λ = {lambda:.3} after {:.0} s ({} Newton iterations, {} cut-backs in the run so far)",
-                        stage_start.elapsed().as_secs_f64(),
-                        rep.newton_iterations,
-                        rep.cutbacks
-                    );
+        // the stage of a step checkpoint continues where it stood (restore resumed it)
+        let mut path = match resume.take() {
+            Some(p) => p,
+            None => {
+                let begun = problem.begin_stage(k);
+                if let Err(m) = any_error(world, begun) {
+                    failure = Some(m);
+                    break;
                 }
-                bar.set_position((lambda * stage.load_steps as f64).round() as u64);
-                bar.set_message(format!(
-                    "λ = {lambda:.3}, Newton {}, cut-backs {}",
-                    rep.newton_iterations, rep.cutbacks
-                ));
-            },
-        );
+                LoadPath::new(stage.load_steps)
+            }
+        };
+        let bar = progress_bar(rank == 0 && opts.verbose, stage.load_steps as u64);
+        let mut solved = Ok(());
+        while solved.is_ok() && !path.done() {
+            solved = problem.advance(&mut path, stage.load_steps, sopts.max_cutbacks, &mut report);
+            if solved.is_err() {
+                break;
+            }
+            let lambda = path.lambda;
+            if step_lines {
+                eprintln!(
+                    "  λ = {lambda:.3} after {:.0} s ({} Newton iterations, {} cut-backs in the run so far)",
+                    stage_start.elapsed().as_secs_f64(),
+                    report.newton_iterations,
+                    report.cutbacks
+                );
+            }
+            bar.set_position((lambda * stage.load_steps as f64).round() as u64);
+            bar.set_message(format!(
+                "λ = {lambda:.3}, Newton {}, cut-backs {}",
+                report.newton_iterations, report.cutbacks
+            ));
+            if step_checkpoints && !path.done() {
+                timer.start(Phase::Output);
+                let t0 = Instant::now();
+                let written = checkpoint::write(world, &ckpt, scene, &problem, &report, Some(path));
+                any_error(world, written).map_err(|m| RunFailure {
+                    code: EXIT_SOLVER,
+                    message: format!("writing the checkpoint {}: {m}", ckpt.display()),
+                })?;
+                ckpt_seconds += t0.elapsed().as_secs_f64();
+                timer.stop();
+                // the restart starts with a fresh preconditioner here; so does this run
+                solved = problem.fresh_preconditioner();
+            }
+        }
         bar.finish_and_clear();
         if let Err(m) = any_error(world, solved.and_then(|_| problem.end_stage())) {
             failure = Some(format!("stage '{}': {m}", stage.name));
@@ -296,7 +329,7 @@ pub fn run_scene(
         });
         if checkpoints {
             let t0 = Instant::now();
-            let written = checkpoint::write(world, &ckpt, scene, &problem, &report);
+            let written = checkpoint::write(world, &ckpt, scene, &problem, &report, None);
             any_error(world, written).map_err(|m| RunFailure {
                 code: EXIT_SOLVER,
                 message: format!("writing the checkpoint {}: {m}", ckpt.display()),

@@ -249,6 +249,76 @@ fn a_killed_run_restarts_from_its_last_checkpoint() {
     assert_bitwise(&d.join("full/results.h5"), &d.join("killed/results.h5"), done);
 }
 
+/// A step checkpoint (`output.checkpoint: step`, written after every converged load step): a
+/// 2-rank run killed as soon as its first checkpoint appears (inside the first stage's 6 load
+/// steps) and restarted from it continues inside that stage and ends bitwise where the
+/// uninterrupted run with step checkpoints ends, with the same solver counters. A step
+/// checkpoint has the stage's load path; a stage checkpoint has none.
+#[test]
+fn a_run_killed_inside_a_stage_restarts_from_its_step_checkpoint() {
+    let dir = tempdir();
+    let d = dir.path();
+    let yaml = scene(2150.0, 6).replace("units: SI", "units: SI\noutput: { checkpoint: step }");
+    assert!(yaml.contains("checkpoint: step"));
+    std::fs::write(d.join("col.yaml"), yaml).unwrap();
+    run_ok(2, d, &["run", "col.yaml", "-o", "full", "-q"]);
+    let ckpt = d.join("killed/checkpoint.h5");
+    let mut child = cfrd_mpi_spawn(2, d, &["run", "col.yaml", "-o", "killed", "-q"]);
+    let t0 = Instant::now();
+    while !ckpt.exists() {
+        assert!(
+            child.try_wait().unwrap().is_none(),
+            "the run ended before its first checkpoint"
+        );
+        assert!(
+            t0.elapsed() < Duration::from_secs(120),
+            "no checkpoint after 120 s"
+        );
+        std::thread::sleep(Duration::from_millis(2));
+    }
+    let status = kill_tree(&mut child);
+    assert!(!status.success(), "the run was killed, not finished");
+    let done = stages_done(&ckpt) as usize;
+    let path = read_f64(&ckpt, "/checkpoint/load_path");
+    println!(
+        "killed after {:.2} s, checkpoint in stage {} at λ = {}",
+        t0.elapsed().as_secs_f64(),
+        done + 1,
+        path[0]
+    );
+    assert_eq!(done, 0, "the first checkpoint is inside the first stage");
+    assert!(path[0] > 0.0 && path[0] < 1.0, "{path:?}");
+    let o = cfrd_mpi(
+        2,
+        d,
+        &[
+            "run",
+            "col.yaml",
+            "-o",
+            "rest",
+            "--restart",
+            "killed/checkpoint.h5",
+        ],
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    let expected = format!("in stage 1 'fill_1' at λ = {:.3}", path[0]);
+    assert!(text(&o).contains(&expected), "{}", text(&o));
+    assert_bitwise(&d.join("full/results.h5"), &d.join("rest/results.h5"), 0);
+    let (s_full, s_rest) = (summary(&d.join("full")), summary(&d.join("rest")));
+    for key in [
+        "steps",
+        "newton_iterations",
+        "ksp_iterations",
+        "newton_per_step",
+        "cutbacks",
+    ] {
+        assert_eq!(s_full[key], s_rest[key], "{key}");
+    }
+    // the last checkpoint of a finished run is its last stage's: no load path
+    let f = hdf5::File::open(d.join("full/checkpoint.h5")).unwrap();
+    assert!(f.dataset("checkpoint/load_path").is_err());
+}
+
 /// Restarts the stopped run of [`full_and_stopped_after_stage_two`] on 1 rank into `one/`.
 fn restart_on_one_rank(d: &Path) {
     run_ok(

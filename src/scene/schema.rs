@@ -336,6 +336,11 @@ pub struct OutputSpec {
 pub enum CheckpointMode {
     /// At the end of every completed stage (replacing the previous checkpoint).
     Stage,
+    /// After every converged load step, and at the end of every stage: a restart continues
+    /// inside the stage (for stages that take longer than a job may run). Each such
+    /// checkpoint also starts a fresh preconditioner, so the results differ in the last bits
+    /// from a run with stage checkpoints (`solver::checkpoint`).
+    Step,
     /// Never.
     None,
 }

@@ -1,9 +1,10 @@
 //! Checkpoints of staged static runs and the exact restart from them (issue 4).
 //!
 //! At the end of every completed stage (scene option `output.checkpoint: stage`, the default for
-//! scenes with `stages`) `cfrd run` writes `<out>/checkpoint.h5` with the whole state of the
-//! static problem; `cfrd run SCENE --restart <out>/checkpoint.h5` loads it and continues with
-//! the next stage. A restart at the same rank count gives results bitwise equal to the
+//! scenes with `stages`), and with `output.checkpoint: step` also after every converged load
+//! step, `cfrd run` writes `<out>/checkpoint.h5` with the whole state of the static problem;
+//! `cfrd run SCENE --restart <out>/checkpoint.h5` loads it and continues with the next stage
+//! (or inside the stage, from a step checkpoint). A restart at the same rank count gives results bitwise equal to the
 //! uninterrupted run's: every value is stored exactly (IEEE bits) and the solve that follows
 //! starts from the same state. The layout does not depend on the rank count (every table is in
 //! global input order), so a checkpoint can also be restarted on another number of ranks; the
@@ -35,13 +36,26 @@
 //!                                               longest (w bytes)
 //!   report               u8  [len]              JSON of the load-step, Newton and KSP counters
 //!                                               ([`SolveReport`] without timings and residuals)
+//!   (step checkpoints only, `output.checkpoint: step`:)
+//!   load_path            f64 [3]                λ reached in the stage in progress, the next
+//!                                               increment, converged steps since it changed
+//!   u_stage_start        f64 [n_nodes, 3]       displacement at the start of that stage (m)
+//!   node_was_active      i64 [n_nodes]          1 if the node was placed before that stage
 //! ```
+//!
+//! A step checkpoint (written after every converged load step that does not end a stage) has
+//! `stages_done` = the index of the stage in progress and `last_stage` the name of the stage
+//! before it (empty in the first stage); the restart continues that stage from λ. Both the
+//! uninterrupted run and the restarted one start a fresh preconditioner after the checkpoint's
+//! step, so the restart is bitwise exact at the same rank count; with step checkpoints the
+//! results differ in the last bits from a run with stage checkpoints only (the factors are
+//! reused over fewer steps).
 //!
 //! Not stored, because [`StaticProblem::begin_stage`] of the next stage recomputes them: the
 //! fixed DOFs and their start values, and which nodes were placed before the stage.
 
 use super::discretization::Discretization;
-use super::statics::{SolveReport, StaticProblem};
+use super::statics::{LoadPath, SolveReport, StageProgress, StaticProblem};
 use crate::io::error::agree;
 use crate::io::{IoError, Redistribution, ResultsFile, ResultsReader};
 use crate::mesh::Mesh;
@@ -63,8 +77,10 @@ pub const CHECKPOINT_FILE: &str = "checkpoint.h5";
 /// `Discretization::elements`, the evaluated ones, when read back).
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct ProblemState {
-    /// Number of completed stages (the next stage has this index).
+    /// Number of completed stages (the next stage, or the one in progress, has this index).
     pub stages_done: usize,
+    /// For a step checkpoint: the stage in progress (index `stages_done`) and its load path.
+    pub in_stage: Option<StageProgress>,
     /// Whether each block is placed (all blocks).
     pub active_block: Vec<bool>,
     /// Whether each node belongs to a placed element (all nodes).
@@ -122,17 +138,19 @@ fn write_replicated<T: crate::io::hdf5_out::TableValue>(
     file.write_table_block(dataset, n, 1, block)
 }
 
-/// Writes the checkpoint of `problem` (at the end of a stage) to `path`, atomically (temporary
-/// file renamed on success). Collective.
+/// Writes the checkpoint of `problem` to `path`, atomically (temporary file renamed on
+/// success): at the end of a stage (`within: None`), or after a converged load step inside
+/// it (`within`: the stage's load path; a step checkpoint). Collective.
 pub fn write(
     world: &SimpleCommunicator,
     path: &Path,
     scene: &Scene,
     problem: &StaticProblem,
     report: &SolveReport,
+    within: Option<LoadPath>,
 ) -> Result<(), IoError> {
     let saved = problem
-        .save_state()
+        .save_state(within)
         .map_err(|e| IoError::Usage(format!("saving the state: {e}")));
     let state = agree(world, saved)?;
     let disc = problem.discretization();
@@ -166,6 +184,13 @@ pub fn write(
         row[..s.len()].copy_from_slice(s);
     }
     file.write_table("/checkpoint/states", &element_plan, width, &packed)?;
+    if let Some(p) = &state.in_stage {
+        file.write_table("/checkpoint/u_stage_start", &node_plan, 3, &p.u_stage_start)?;
+        let was = flags(p.node_was_active.iter().copied());
+        file.write_table("/checkpoint/node_was_active", &node_plan, 1, &was)?;
+        let path = [p.path.lambda, p.path.d_lambda, f64::from(p.path.streak)];
+        write_replicated(&mut file, "/checkpoint/load_path", &path)?;
+    }
     // the counters are the same on every rank; rank 0's are stored (timings are per run; the
     // residual history is not needed and may hold a non-finite value, which JSON cannot)
     let counters = SolveReport {
@@ -177,7 +202,10 @@ pub fn write(
     let mut json = serde_json::to_vec(&counters).unwrap_or_default();
     broadcast_vec(&comm, 0, &mut json);
     write_replicated(&mut file, "/checkpoint/report", &json)?;
-    let stage_name = scene.stages[state.stages_done - 1].name.as_str();
+    let stage_name = match state.stages_done {
+        0 => "",
+        k => scene.stages[k - 1].name.as_str(),
+    };
     file.write_group_attrs(
         "/checkpoint",
         &[
@@ -241,15 +269,16 @@ pub fn read(
             )));
         }
         let done: u64 = reader.attr("/checkpoint", "stages_done")?;
-        if done == 0 || done >= scene.stages.len() as u64 {
+        let within = reader.shape("/checkpoint/load_path").is_ok();
+        if (done == 0 && !within) || done >= scene.stages.len() as u64 {
             return Err(layout(format!(
                 "{done} of the scene's {} stage(s) completed: nothing to restart",
                 scene.stages.len()
             )));
         }
-        Ok(done as usize)
+        Ok((done as usize, within))
     })();
-    let stages_done = agree(&comm, checked)?;
+    let (stages_done, within) = agree(&comm, checked)?;
     let node_plan = Redistribution::new(&comm, "nodes", n_nodes, &disc.owned_nodes)?;
     // the states of every element this rank evaluates (owned and along the partition boundary)
     let element_plan = Redistribution::for_reading(&comm, "elements", n_elements, &disc.elements)?;
@@ -273,6 +302,14 @@ pub fn read(
     let (node_active, _) = reader.read_all::<i64>("/checkpoint/node_active")?;
     let (active_block, _) = reader.read_all::<i64>("/checkpoint/active_block")?;
     let (json, _) = reader.read_all::<u8>("/checkpoint/report")?;
+    let progress = if within {
+        let start = reader.read_owned::<f64>("/checkpoint/u_stage_start", &node_plan)?;
+        let was = reader.read_owned::<i64>("/checkpoint/node_was_active", &node_plan)?;
+        let (path, _) = reader.read_all::<f64>("/checkpoint/load_path")?;
+        Some((start, was, path))
+    } else {
+        None
+    };
     let assembled = (|| {
         let u = sized("u", u, 3 * nn)?;
         let f_prev = sized("f_prev", f_prev, 3 * nn)?;
@@ -291,8 +328,32 @@ pub fn read(
         }
         let report: SolveReport = serde_json::from_slice(&json)
             .map_err(|e| bad(&format!("the stored solver counters do not parse ({e})")))?;
+        let in_stage = match progress {
+            None => None,
+            Some((start, was, path)) => {
+                let fits = path.len() == 3
+                    && (0.0..1.0).contains(&path[0])
+                    && path[1] > 0.0
+                    && path[2] >= 0.0
+                    && path[2].fract() == 0.0
+                    && was.len() == nn;
+                if !fits {
+                    return Err(bad("the stored load path of the stage in progress is not valid"));
+                }
+                Some(StageProgress {
+                    path: LoadPath {
+                        lambda: path[0],
+                        d_lambda: path[1],
+                        streak: path[2] as u32,
+                    },
+                    u_stage_start: sized("u_stage_start", start, 3 * nn)?,
+                    node_was_active: was.iter().map(|&f| f != 0).collect(),
+                })
+            }
+        };
         let state = ProblemState {
             stages_done,
+            in_stage,
             active_block: active_block[..scene.mesh.blocks.len()]
                 .iter()
                 .map(|&f| f != 0)
@@ -314,19 +375,27 @@ pub fn read(
 }
 
 /// Reads a checkpoint and restores `problem` and the counters in `report` from it; returns the
-/// number of completed stages (the index of the stage to run next). Collective.
+/// number of completed stages (the index of the stage to run or continue next) and, for a step
+/// checkpoint, the load path to continue that stage from (the problem is then inside the
+/// stage, [`StaticProblem::resume_stage`]). Collective.
 pub fn restore(
     world: &SimpleCommunicator,
     path: &Path,
     scene: &Scene,
     problem: &mut StaticProblem,
     report: &mut SolveReport,
-) -> Result<usize, IoError> {
+) -> Result<(usize, Option<LoadPath>), IoError> {
     let (state, counters) = read(world, path, scene, problem.discretization())?;
     let restored = problem
         .restore_state(&state)
         .map_err(|m| IoError::Layout(format!("{}: {m}", path.display())));
     agree(world, restored)?;
+    if let Some(progress) = &state.in_stage {
+        let resumed = problem
+            .resume_stage(progress)
+            .map_err(|e| IoError::Usage(format!("continuing the stage: {e}")));
+        agree(world, resumed)?;
+    }
     *report = counters;
-    Ok(state.stages_done)
+    Ok((state.stages_done, state.in_stage.map(|p| p.path)))
 }

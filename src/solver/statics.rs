@@ -126,6 +126,46 @@ impl SolveError {
     }
 }
 
+/// Where the load stepping of a stage stands: the load factor reached, the next increment and
+/// the count of successes since the last change of the increment. Step checkpoints store it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LoadPath {
+    /// Load factor λ reached in the stage (0 at its start, 1 at its end).
+    pub lambda: f64,
+    /// The next increment of λ (1/n_steps, or less after cut-backs).
+    pub d_lambda: f64,
+    /// Converged steps since the increment last changed (it doubles after two).
+    pub streak: u32,
+}
+
+impl LoadPath {
+    /// The start of a stage of `n_steps` equal increments.
+    pub fn new(n_steps: u32) -> Self {
+        LoadPath {
+            lambda: 0.0,
+            d_lambda: 1.0 / n_steps.max(1) as f64,
+            streak: 0,
+        }
+    }
+
+    /// Whether the stage's loads are fully applied.
+    pub fn done(&self) -> bool {
+        self.lambda >= 1.0 - 1e-12
+    }
+}
+
+/// A stage in progress in a step checkpoint: the load path and what
+/// [`StaticProblem::begin_stage`] computed at the stage's start (rank-local, owned order).
+#[derive(Debug, Clone, PartialEq)]
+pub struct StageProgress {
+    /// The load stepping reached.
+    pub path: LoadPath,
+    /// Displacement of the owned DOFs at the start of the stage.
+    pub u_stage_start: Vec<f64>,
+    /// Per owned node: whether it was placed before the stage.
+    pub node_was_active: Vec<bool>,
+}
+
 /// Counters and timings of a solve.
 #[derive(Debug, Clone, Default, serde::Serialize, serde::Deserialize)]
 pub struct SolveReport {
@@ -252,6 +292,9 @@ pub struct StaticProblem<'a> {
     node_offset: Vec<[f64; 3]>,
     /// Per owned node: whether it is part of a placed element already at the start of the stage.
     node_was_active: Vec<bool>,
+    /// Displacement of the owned DOFs at the start of the stage (for step checkpoints: the
+    /// fixed DOFs' start values are recomputed from it on a restart within the stage).
+    u_stage_start: Vec<f64>,
     /// Index of the current stage in `scene.stages`.
     stage: usize,
     /// External force at the end of the previous stage.
@@ -405,6 +448,7 @@ impl<'a> StaticProblem<'a> {
             elem_ref: vec![Vector24::zeros(); n_elements],
             node_offset: vec![[0.0; 3]; n_owned_nodes],
             node_was_active: vec![false; n_owned_nodes],
+            u_stage_start: Vec::new(),
             stage: 0,
             f_prev,
             k,
@@ -422,10 +466,12 @@ impl<'a> StaticProblem<'a> {
         &self.disc
     }
 
-    /// The state a checkpoint stores at the end of the current stage (after
-    /// [`StaticProblem::end_stage`]): everything [`StaticProblem::begin_stage`] of the next stage
-    /// and the solve need, in this rank's owned order ([`super::checkpoint`]).
-    pub(crate) fn save_state(&self) -> Result<ProblemState, SolveError> {
+    /// The state a checkpoint stores, in this rank's owned order ([`super::checkpoint`]): with
+    /// `within: None` at the end of the current stage (after [`StaticProblem::end_stage`]),
+    /// everything [`StaticProblem::begin_stage`] of the next stage and the solve need; with
+    /// `Some(path)` after a converged load step inside the stage, also what
+    /// [`StaticProblem::resume_stage`] needs to continue the stage from `path`.
+    pub(crate) fn save_state(&self, within: Option<LoadPath>) -> Result<ProblemState, SolveError> {
         let mut element_states = Vec::with_capacity(self.disc.owned_elements.len());
         for (i, &(b, be)) in self.elem_block.iter().enumerate() {
             if !self.disc.element_owned[i] {
@@ -440,8 +486,18 @@ impl<'a> StaticProblem<'a> {
                 reason,
             })?);
         }
+        let in_stage = within.map(|path| StageProgress {
+            path,
+            u_stage_start: self.u_stage_start.clone(),
+            node_was_active: self.node_was_active.clone(),
+        });
         Ok(ProblemState {
-            stages_done: self.stage + 1,
+            stages_done: if within.is_some() {
+                self.stage
+            } else {
+                self.stage + 1
+            },
+            in_stage,
             active_block: self.active_block.clone(),
             node_active: self.node_active.clone(),
             u: self.u_committed.read(|s| s.to_vec())?,
@@ -461,7 +517,8 @@ impl<'a> StaticProblem<'a> {
     /// Restores a state saved by [`StaticProblem::save_state`] (possibly under another
     /// partition: the caller maps it to this rank's owned nodes and evaluated elements,
     /// [`Discretization::elements`]). The next call is
-    /// [`StaticProblem::begin_stage`] of stage `state.stages_done`. Local; fails on wrong lengths
+    /// [`StaticProblem::begin_stage`] of stage `state.stages_done`, or
+    /// [`StaticProblem::resume_stage`] for a state saved within that stage. Local; fails on wrong lengths
     /// or states that do not decode for the block's model (naming the element).
     pub(crate) fn restore_state(&mut self, state: &ProblemState) -> Result<(), String> {
         let (nn, ne) = (self.disc.owned_nodes.len(), self.disc.elements.len());
@@ -477,7 +534,13 @@ impl<'a> StaticProblem<'a> {
         if let Some((what, got, want)) = lens.iter().find(|(_, got, want)| got != want) {
             return Err(format!("{what}: {got} values, this problem has {want}"));
         }
-        if state.stages_done == 0 || state.stages_done > self.scene.stages.len() {
+        if let Some(p) = &state.in_stage {
+            if p.u_stage_start.len() != 3 * nn || p.node_was_active.len() != nn {
+                return Err("the stage's start values do not fit this problem".into());
+            }
+        }
+        let first = usize::from(state.in_stage.is_none());
+        if state.stages_done < first || state.stages_done > self.scene.stages.len() {
             return Err(format!(
                 "{} completed stage(s), the scene has {}",
                 state.stages_done,
@@ -497,7 +560,7 @@ impl<'a> StaticProblem<'a> {
                 )
             })?;
         }
-        self.stage = state.stages_done - 1;
+        self.stage = state.stages_done.saturating_sub(first);
         self.active_block.clone_from(&state.active_block);
         self.node_active.clone_from(&state.node_active);
         self.node_offset.clone_from(&state.node_offset);
@@ -546,8 +609,37 @@ impl<'a> StaticProblem<'a> {
                 self.elem_ref[i] = Vector24::from_fn(|r, _| u_loc[3 * loc[r / 3] as usize + r % 3]);
             }
         }
+        self.u_stage_start = self.u.read(|s| s.to_vec())?;
+        self.fix_for_stage()
+    }
+
+    /// Continues the stage in progress of a step checkpoint, once the problem's state is
+    /// restored from it ([`super::checkpoint::restore`] calls this): the fixed DOFs and their
+    /// start values from the stored start of the stage, and a fresh preconditioner, as the
+    /// uninterrupted run has after writing that checkpoint. Collective.
+    pub fn resume_stage(&mut self, progress: &StageProgress) -> Result<(), SolveError> {
+        self.node_was_active.clone_from(&progress.node_was_active);
+        self.u_stage_start.clone_from(&progress.u_stage_start);
+        self.fix_for_stage()
+    }
+
+    /// A fresh preconditioner (after a step checkpoint: the steps that follow do not depend on
+    /// the factors of the steps before it, so a restart from it repeats them exactly).
+    /// Collective.
+    pub fn fresh_preconditioner(&mut self) -> Result<(), SolveError> {
+        self.snes
+            .as_mut()
+            .expect("the nonlinear solver is in place between steps")
+            .reset()?;
+        Ok(())
+    }
+
+    /// The fixed DOFs of the current stage: the scene's conditions and the nodes not yet placed
+    /// (held at their displacement at the stage's start), with their start values from
+    /// `u_stage_start`; then a fresh preconditioner. Collective.
+    fn fix_for_stage(&mut self) -> Result<(), SolveError> {
         let lo = self.disc.dof_lo;
-        let u_own: Vec<f64> = self.u.read(|s| s.to_vec())?;
+        let u_own = &self.u_stage_start;
         // the nodes not yet placed are held where they are; that replaces any scene constraint
         let mut held: Vec<(i32, f64)> = Vec::new();
         for &n in &self.disc.owned_nodes {
@@ -571,12 +663,8 @@ impl<'a> StaticProblem<'a> {
         self.fixed_start = fixed.iter().map(|&(d, _)| u_own[d as usize - lo]).collect();
         self.fixed = fixed;
         // a fresh preconditioner per stage: the stage's solves do not depend on earlier
-        // stages, so a restart from the checkpoint of the previous stage repeats them exactly
-        self.snes
-            .as_mut()
-            .expect("the nonlinear solver is in place between steps")
-            .reset()?;
-        Ok(())
+        // stages, so a restart from the checkpoint of previous stage repeats them exactly
+        self.fresh_preconditioner()
     }
 
     /// Ends the current stage: its loads become the starting loads of the next one, and the
@@ -824,9 +912,8 @@ impl<'a> StaticProblem<'a> {
     }
 
     /// Applies the loads in `n_steps` equal increments of the load factor λ from the committed
-    /// state to 1, cutting a failed increment in half (at most `max_cutbacks` times in a row) and
-    /// growing it back after two successes. `on_step(λ)` is called after every converged step.
-    /// Every decision is collective, so all ranks take the same path.
+    /// state to 1 ([`StaticProblem::advance`] until the stage's end). `on_step(λ)` is called
+    /// after every converged step.
     pub fn solve_load_steps(
         &mut self,
         n_steps: u32,
@@ -834,27 +921,44 @@ impl<'a> StaticProblem<'a> {
         report: &mut SolveReport,
         mut on_step: impl FnMut(f64, &SolveReport),
     ) -> Result<(), SolveError> {
+        let mut path = LoadPath::new(n_steps);
+        while !path.done() {
+            self.advance(&mut path, n_steps, max_cutbacks, report)?;
+            on_step(path.lambda, report);
+        }
+        Ok(())
+    }
+
+    /// One converged load step along `path` (a stage of `n_steps` equal increments of λ up to
+    /// 1): a failed increment is cut in half (at most `max_cutbacks` times in a row) and grown
+    /// back after two successes. Every decision is collective, so all ranks take the same path.
+    pub fn advance(
+        &mut self,
+        path: &mut LoadPath,
+        n_steps: u32,
+        max_cutbacks: u32,
+        report: &mut SolveReport,
+    ) -> Result<(), SolveError> {
         let base = 1.0 / n_steps.max(1) as f64;
-        let (mut lambda, mut d_lambda, mut cuts, mut streak) = (0.0f64, base, 0u32, 0u32);
-        while lambda < 1.0 - 1e-12 {
-            let next = if lambda + d_lambda > 1.0 - 1e-12 {
+        let mut cuts = 0u32;
+        loop {
+            let next = if path.lambda + path.d_lambda > 1.0 - 1e-12 {
                 1.0
             } else {
-                lambda + d_lambda
+                path.lambda + path.d_lambda
             };
             let before = report.newton_iterations;
             match self.solve_step(next, report) {
                 Ok(()) => {
-                    lambda = next;
+                    path.lambda = next;
                     report.steps += 1;
                     report.newton_per_step.push(report.newton_iterations - before);
-                    cuts = 0;
-                    streak += 1;
-                    if streak >= 2 && d_lambda < base {
-                        d_lambda = (2.0 * d_lambda).min(base);
-                        streak = 0;
+                    path.streak += 1;
+                    if path.streak >= 2 && path.d_lambda < base {
+                        path.d_lambda = (2.0 * path.d_lambda).min(base);
+                        path.streak = 0;
                     }
-                    on_step(lambda, report);
+                    return Ok(());
                 }
                 Err(e) if e.recoverable() && cuts < max_cutbacks => {
                     if self.scene.file.solver.monitor && SimpleCommunicator::world().rank() == 0 {
@@ -862,12 +966,12 @@ impl<'a> StaticProblem<'a> {
                     }
                     cuts += 1;
                     report.cutbacks += 1;
-                    d_lambda *= 0.5;
-                    streak = 0;
+                    path.d_lambda *= 0.5;
+                    path.streak = 0;
                 }
                 Err(e) => {
                     return Err(SolveError::Step {
-                        from: lambda,
+                        from: path.lambda,
                         to: next,
                         cutbacks: cuts,
                         source: Box::new(e),
@@ -875,7 +979,6 @@ impl<'a> StaticProblem<'a> {
                 }
             }
         }
-        Ok(())
     }
 
     /// Returns to the committed state (after a failed step).
