@@ -32,7 +32,8 @@ declare -A mesh=(
 # 4.6 min), where BoomerAMG
 # (-pc_type hypre) took 13.0 min for the first 8; the default GAMG failed in the first fill stage
 # (PC failed, SUBPC_ERROR; with -pc_gamg_threshold 0 in the third). The factorization's memory
-# once the whole fine mesh is placed has not been measured (1.2 GB per rank at fill_016).
+# grows with the placed mesh: 1.2 GB per rank at fill_016, 3.6 GB at fill_047, 5.6 GB after
+# slab_1 and 7.9 GB at fill_086 (README, "Seed dam status").
 # Newton tolerance 1e-5 (spec section 8.1 gives 1e-4 as typical): the GP substepping (STOL 1e-4)
 # leaves an out-of-balance noise of about STOL x stress x face area, measured on the coarse
 # mesh's first fill layer as 3e3 N at a cushion corner node, 2e-6 of the layer's weight; the
