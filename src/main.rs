@@ -58,6 +58,12 @@ enum Command {
         /// `scripts/run_in_parts.sh`).
         #[arg(long, value_name = "K|+N", value_parser = parse_stop_after)]
         stop_after_stage: Option<cfrd::run::StopAfter>,
+        /// When to write `<out>/checkpoint.h5`: `stage` (end of every stage), `step` (also after
+        /// every converged load step; a restart continues inside the stage) or `none`.
+        /// Overrides the scene's `output.checkpoint` without changing the scene, so a run in
+        /// parts may switch to step checkpoints for its long stages.
+        #[arg(long, value_name = "stage|step|none", value_parser = parse_checkpoint)]
+        checkpoint: Option<cfrd::scene::schema::CheckpointMode>,
     },
     /// Validate a scene (YAML, mesh, cross-references) without solving.
     Check {
@@ -144,6 +150,17 @@ fn parse_stop_after(s: &str) -> Result<cfrd::run::StopAfter, String> {
     } else {
         cfrd::run::StopAfter::Stage(n)
     })
+}
+
+/// Parses `--checkpoint`.
+fn parse_checkpoint(s: &str) -> Result<cfrd::scene::schema::CheckpointMode, String> {
+    use cfrd::scene::schema::CheckpointMode;
+    match s {
+        "stage" => Ok(CheckpointMode::Stage),
+        "step" => Ok(CheckpointMode::Step),
+        "none" => Ok(CheckpointMode::None),
+        _ => Err(format!("'{s}': expected stage, step or none")),
+    }
 }
 
 /// Splits PETSc options (`-word` with more than one letter after a single dash, plus its value
@@ -266,6 +283,7 @@ fn main() -> ExitCode {
                 verbose: false,
                 restart: None,
                 stop_after_stage: None,
+                checkpoint: None,
             };
             let s = cfrd::run::bench_solver(world, dofs, &opts)?;
             if mpi::topology::Communicator::rank(world) == 0 {
@@ -305,6 +323,7 @@ fn main() -> ExitCode {
             quiet,
             restart,
             stop_after_stage,
+            checkpoint,
         } => with_mpi(|world| {
             let opts = cfrd::run::RunOptions {
                 scene,
@@ -313,6 +332,7 @@ fn main() -> ExitCode {
                 verbose: !quiet,
                 restart,
                 stop_after_stage,
+                checkpoint,
             };
             cfrd::run::run(world, &opts)?;
             Ok(())

@@ -52,6 +52,10 @@ pub struct RunOptions {
     /// End the run cleanly after a stage, once its results and checkpoint are written
     /// (`--stop-after-stage`): a run in parts under a job time limit.
     pub stop_after_stage: Option<StopAfter>,
+    /// When to write checkpoints, overriding the scene's `output.checkpoint` (`--checkpoint`;
+    /// not part of the scene's hash, so a run continued with step checkpoints still restarts
+    /// from its stage checkpoints).
+    pub checkpoint: Option<CheckpointMode>,
 }
 
 /// Where a run in parts ends (`--stop-after-stage K` or `+N`).
@@ -205,11 +209,12 @@ pub fn run_scene(
             ),
         });
     }
-    let checkpoints = match scene.file.output.checkpoint {
+    let mode = opts.checkpoint.or(scene.file.output.checkpoint);
+    let checkpoints = match mode {
         Some(mode) => mode != CheckpointMode::None,
         None => !scene.file.stages.is_empty(),
     };
-    let step_checkpoints = scene.file.output.checkpoint == Some(CheckpointMode::Step);
+    let step_checkpoints = mode == Some(CheckpointMode::Step);
     let stop_after_stage = opts.stop_after_stage.map(|s| match s {
         StopAfter::Stage(k) => k,
         StopAfter::Stages(n) => (first_stage + n).min(scene.stages.len()),
@@ -218,8 +223,8 @@ pub fn run_scene(
         let n = scene.stages.len();
         if !checkpoints {
             return Err(input(format!(
-                "--stop-after-stage {stop}: the scene writes no checkpoints (output.checkpoint), \
-                 so the run could not be continued"
+                "--stop-after-stage {stop}: the run writes no checkpoints (output.checkpoint or \
+                 --checkpoint), so it could not be continued"
             )));
         }
         if stop <= first_stage || stop > n {

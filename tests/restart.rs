@@ -317,6 +317,14 @@ fn a_run_killed_inside_a_stage_restarts_from_its_step_checkpoint() {
     // the last checkpoint of a finished run is its last stage's: no load path
     let f = hdf5::File::open(d.join("full/checkpoint.h5")).unwrap();
     assert!(f.dataset("checkpoint/load_path").is_err());
+    // `--checkpoint step` on the scene without the key does the same, bit for bit
+    std::fs::write(d.join("plain.yaml"), scene(2150.0, 6)).unwrap();
+    run_ok(
+        2,
+        d,
+        &["run", "plain.yaml", "-o", "over", "-q", "--checkpoint", "step"],
+    );
+    assert_bitwise(&d.join("full/results.h5"), &d.join("over/results.h5"), 0);
 }
 
 /// Restarts the stopped run of [`full_and_stopped_after_stage_two`] on 1 rank into `one/`.
@@ -430,7 +438,7 @@ fn restart_refuses_other_scenes_and_bad_files() {
         (
             "none.yaml",
             &["--stop-after-stage", "2"],
-            "the scene writes no checkpoints",
+            "the run writes no checkpoints",
         ),
     ];
     for (scene, extra, expected) in cases {
