@@ -499,8 +499,8 @@ fn write_step(
 /// Reads every stage of the closed results files `h5s` (serial HDF5), in order, and writes the
 /// profile tables and plots of [`crate::profiles`] into `dir`. Several files are the parts of a
 /// run restarted from checkpoints (`cfrd profiles`): their stages are joined in the order given,
-/// and a stage found again in a later file replaces the earlier one (a part that wrote a stage's
-/// results but was killed before its checkpoint, so the next part ran that stage again).
+/// and a stage found again in a later file replaces the earlier one (a stage run again by a
+/// later part, e.g. after a second restart from the same checkpoint).
 pub fn write_profiles_from_results(
     scene: &Scene,
     spec: &crate::profiles::ProfilesSpec,
