@@ -17,7 +17,7 @@
 #   FINE=DIR takes the fine hyperbolic run made with scripts/run_in_parts.sh (it takes hours on
 #   2 cores, so it is not started here): draws the figures of all its parts that kept their
 #   results together (`cfrd profiles`, into DIR/profiles; each part's own figures hold only
-#   the stages it ran, and a killed part keeps none),
+#   the stages it ran; parts killed by an older cfrd kept none),
 #   copies them as seed_fine_hyperbolic_fig*.png, overlays the hyperbolic slab profiles of the three meshes as
 #   seed_hyperbolic_meshes.png and adds a row fine_hyperbolic with the wall time summed over
 #   DIR/parts.csv and the largest per-rank memory of the parts.
@@ -77,8 +77,8 @@ fine=""
 if [ -n "${FINE:-}" ]; then
     fine="$(ls -d "$FINE"/part_* | sort -V | tail -n 1)"
     [ -f "$fine/summary.json" ] || { echo "$fine has not finished (no summary.json)" >&2; exit 1; }
-    # a part that was killed kept no results.h5 (only its checkpoint): its stages are missing
-    # from the probe history
+    # a part killed by a cfrd that published its results only at the end has no results.h5
+    # (only its checkpoint): its stages are missing from the probe history
     parts=()
     for p in $(ls -d "$FINE"/part_* | sort -V); do
         if [ -f "$p/results.h5" ]; then parts+=("$p"); else echo "$p: no results.h5 (killed), its stages are not drawn"; fi

@@ -9,9 +9,9 @@
 # Usage: scripts/run_in_parts.sh SCENE OUT [RANKS] [-- extra `cfrd run` arguments]
 #   RANKS defaults to 2. BIN overrides the binary (default: target/release/cfrd, built first).
 #   PART_STAGES=N ends each part cleanly after N stages (`cfrd run --stop-after-stage +N`), e.g.
-#   to fit a cluster job's time limit. A part that ends so keeps its results.h5; a part that
-#   is killed keeps only its checkpoint (its results stay an unpublished .results.h5.partial-*
-#   file), so only the parts that ended cleanly can be drawn together afterwards:
+#   to fit a cluster job's time limit. Every part keeps the results.h5 of the stages it
+#   completed (published at every stage checkpoint; parts killed by cfrd before that feature
+#   have none), and the parts are drawn together with
 #   `cfrd profiles SCENE OUT/part_1 OUT/part_2 ... -o OUT/profiles`.
 # Writes OUT/parts.csv: part, first stage, last stage begun, wall seconds (from /usr/bin/time), peak
 # resident memory of the largest rank in KiB, exit code. The finished part's summary.json holds

@@ -333,6 +333,13 @@ pub fn run_scene(
             seconds: stage_start.elapsed().as_secs_f64(),
         });
         if checkpoints {
+            // the results of the completed stages are published before the checkpoint that
+            // follows them: a run killed later leaves both (a stage in both a killed part's and
+            // the next part's results is one run again after a kill between the two writes)
+            any_error(world, file.publish()).map_err(|m| RunFailure {
+                code: EXIT_SOLVER,
+                message: format!("writing results: {m}"),
+            })?;
             let t0 = Instant::now();
             let written = checkpoint::write(world, &ckpt, scene, &problem, &report, None);
             any_error(world, written).map_err(|m| RunFailure {
@@ -499,8 +506,9 @@ fn write_step(
 /// Reads every stage of the closed results files `h5s` (serial HDF5), in order, and writes the
 /// profile tables and plots of [`crate::profiles`] into `dir`. Several files are the parts of a
 /// run restarted from checkpoints (`cfrd profiles`): their stages are joined in the order given,
-/// and a stage found again in a later file replaces the earlier one (a stage run again by a
-/// later part, e.g. after a second restart from the same checkpoint).
+/// and a stage found again in a later file replaces the earlier one (a part killed after it
+/// published a stage's results but before that stage's checkpoint, so the next part ran the
+/// stage again; or a second restart from the same checkpoint).
 pub fn write_profiles_from_results(
     scene: &Scene,
     spec: &crate::profiles::ProfilesSpec,

@@ -8,8 +8,11 @@
 //!
 //! The file is written under a temporary name in the target directory and renamed over the
 //! target only by [`ResultsFile::close`], after the HDF5 file was closed successfully; the XDMF
-//! file is written then. A writer dropped without `close` (an error, a failed step) deletes its
-//! temporary file, so an existing results file is never lost or left half-written.
+//! file is written then. [`ResultsFile::publish`] (called by a staged run at every stage
+//! checkpoint) puts a complete copy of the steps written so far at the target and continues
+//! writing the temporary file, so a run killed later leaves the results of its completed stages.
+//! A writer dropped without `close` (an error, a failed step) deletes its temporary file, so an
+//! existing results file is never lost or left half-written.
 //!
 //! [`ResultsReader`] opens a results or checkpoint file collectively and reads datasets back:
 //! each rank its block, every row, or the rows of a given ownership (for restarts).
@@ -614,6 +617,45 @@ impl ResultsFile {
     /// The XDMF path written by [`ResultsFile::close`]: the results path with extension `xdmf`.
     pub fn xdmf_path(&self) -> PathBuf {
         self.final_path.with_extension("xdmf")
+    }
+
+    /// Publishes the steps written so far: closes the HDF5 file, copies it to the target path
+    /// (under a second temporary name that is renamed over the target, so the target is always
+    /// a complete file), has rank 0 write the XDMF file, and reopens the temporary file to
+    /// continue writing. A run killed later leaves at the target the steps up to the last
+    /// publish. Collective.
+    pub fn publish(&mut self) -> Result<(), IoError> {
+        let closed = match self.file.take() {
+            Some(f) => f
+                .close()
+                .map_err(|e| IoError::hdf5(format!("closing {}", self.temp_path.display()), e)),
+            None => Ok(()),
+        };
+        agree(&self.comm, closed)?;
+        let copied = if self.comm.rank() == 0 {
+            let copy = self.temp_path.with_extension("publish");
+            std::fs::copy(&self.temp_path, &copy)
+                .and_then(|_| std::fs::rename(&copy, &self.final_path))
+                .map_err(|source| IoError::File {
+                    path: self.final_path.clone(),
+                    source,
+                })
+        } else {
+            Ok(())
+        };
+        agree(&self.comm, copied)?;
+        let described = if self.comm.rank() == 0 && self.n_nodes.is_some() {
+            xdmf::write(&self.xdmf_document(), &self.xdmf_path())
+        } else {
+            Ok(())
+        };
+        agree(&self.comm, described)?;
+        let reopened = File::with_options()
+            .with_fapl(|f| f.mpio(self.comm.as_raw(), None))
+            .open_rw(&self.temp_path)
+            .map_err(|e| IoError::hdf5(format!("reopening {}", self.temp_path.display()), e));
+        self.file = Some(agree(&self.comm, reopened)?);
+        Ok(())
     }
 
     /// Closes the HDF5 file, renames it over the target path and (if the mesh was written) has
