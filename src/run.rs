@@ -302,13 +302,7 @@ pub fn run_scene(
             ));
             if step_checkpoints && !path.done() {
                 timer.start(Phase::Output);
-                let t0 = Instant::now();
-                let written = checkpoint::write(world, &ckpt, scene, &problem, &report, Some(path));
-                any_error(world, written).map_err(|m| RunFailure {
-                    code: EXIT_SOLVER,
-                    message: format!("writing the checkpoint {}: {m}", ckpt.display()),
-                })?;
-                ckpt_seconds += t0.elapsed().as_secs_f64();
+                ckpt_seconds += write_checkpoint(world, &ckpt, scene, &problem, &report, Some(path))?;
                 timer.stop();
                 // the restart starts with a fresh preconditioner here; so does this run
                 solved = problem.fresh_preconditioner();
@@ -340,13 +334,7 @@ pub fn run_scene(
                 code: EXIT_SOLVER,
                 message: format!("writing results: {m}"),
             })?;
-            let t0 = Instant::now();
-            let written = checkpoint::write(world, &ckpt, scene, &problem, &report, None);
-            any_error(world, written).map_err(|m| RunFailure {
-                code: EXIT_SOLVER,
-                message: format!("writing the checkpoint {}: {m}", ckpt.display()),
-            })?;
-            ckpt_seconds += t0.elapsed().as_secs_f64();
+            ckpt_seconds += write_checkpoint(world, &ckpt, scene, &problem, &report, None)?;
         }
         timer.stop();
         if stop_after_stage == Some(k + 1) && k + 1 < n_stages {
@@ -466,6 +454,24 @@ pub fn run_scene(
         out_dir.join("summary.json").display()
     ));
     Ok(summary)
+}
+
+/// Writes the checkpoint ([`checkpoint::write`]) and returns the seconds it took. Collective.
+fn write_checkpoint(
+    world: &SimpleCommunicator,
+    ckpt: &Path,
+    scene: &Scene,
+    problem: &StaticProblem,
+    report: &SolveReport,
+    within: Option<LoadPath>,
+) -> Result<f64, RunFailure> {
+    let t0 = Instant::now();
+    let written = checkpoint::write(world, ckpt, scene, problem, report, within);
+    any_error(world, written).map_err(|m| RunFailure {
+        code: EXIT_SOLVER,
+        message: format!("writing the checkpoint {}: {m}", ckpt.display()),
+    })?;
+    Ok(t0.elapsed().as_secs_f64())
 }
 
 /// Writes the fields of the converged state after stage `k` as one step (collective; input

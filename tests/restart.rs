@@ -200,13 +200,9 @@ fn restart_after_stage_two_is_bitwise_exact() {
     assert!(t_rest.iter().all(|(_, s)| *s > 0.0), "{t_rest:?}");
 }
 
-#[test]
-fn a_killed_run_restarts_from_its_last_checkpoint() {
-    let dir = tempdir();
-    let d = dir.path();
-    // more load steps per stage, so that the kill comes well before the end of the run
-    std::fs::write(d.join("col.yaml"), scene(2150.0, 6)).unwrap();
-    run_ok(2, d, &["run", "col.yaml", "-o", "full", "-q"]);
+/// Runs `col.yaml` on 2 ranks into `killed/` and kills it as soon as its first checkpoint
+/// appears; returns the exit status and the start time.
+fn run_until_first_checkpoint(d: &Path) -> (std::process::ExitStatus, Instant) {
     let ckpt = d.join("killed/checkpoint.h5");
     let mut child = cfrd_mpi_spawn(2, d, &["run", "col.yaml", "-o", "killed", "-q"]);
     let t0 = Instant::now();
@@ -219,9 +215,20 @@ fn a_killed_run_restarts_from_its_last_checkpoint() {
             t0.elapsed() < Duration::from_secs(120),
             "no checkpoint after 120 s"
         );
-        std::thread::sleep(Duration::from_millis(5));
+        std::thread::sleep(Duration::from_millis(2));
     }
-    let status = kill_tree(&mut child);
+    (kill_tree(&mut child), t0)
+}
+
+#[test]
+fn a_killed_run_restarts_from_its_last_checkpoint() {
+    let dir = tempdir();
+    let d = dir.path();
+    // more load steps per stage, so that the kill comes well before the end of the run
+    std::fs::write(d.join("col.yaml"), scene(2150.0, 6)).unwrap();
+    run_ok(2, d, &["run", "col.yaml", "-o", "full", "-q"]);
+    let ckpt = d.join("killed/checkpoint.h5");
+    let (status, t0) = run_until_first_checkpoint(d);
     let done = stages_done(&ckpt) as usize;
     println!(
         "killed after {:.2} s ({status}), checkpoint after stage {done}",
@@ -278,20 +285,7 @@ fn a_run_killed_inside_a_stage_restarts_from_its_step_checkpoint() {
     std::fs::write(d.join("col.yaml"), yaml).unwrap();
     run_ok(2, d, &["run", "col.yaml", "-o", "full", "-q"]);
     let ckpt = d.join("killed/checkpoint.h5");
-    let mut child = cfrd_mpi_spawn(2, d, &["run", "col.yaml", "-o", "killed", "-q"]);
-    let t0 = Instant::now();
-    while !ckpt.exists() {
-        assert!(
-            child.try_wait().unwrap().is_none(),
-            "the run ended before its first checkpoint"
-        );
-        assert!(
-            t0.elapsed() < Duration::from_secs(120),
-            "no checkpoint after 120 s"
-        );
-        std::thread::sleep(Duration::from_millis(2));
-    }
-    let status = kill_tree(&mut child);
+    let (status, t0) = run_until_first_checkpoint(d);
     assert!(!status.success(), "the run was killed, not finished");
     let done = stages_done(&ckpt) as usize;
     let path = read_f64(&ckpt, "/checkpoint/load_path");

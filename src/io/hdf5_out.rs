@@ -619,19 +619,24 @@ impl ResultsFile {
         self.final_path.with_extension("xdmf")
     }
 
-    /// Publishes the steps written so far: closes the HDF5 file, copies it to the target path
-    /// (under a second temporary name that is renamed over the target, so the target is always
-    /// a complete file), has rank 0 write the XDMF file, and reopens the temporary file to
-    /// continue writing. A run killed later leaves at the target the steps up to the last
-    /// publish. Collective.
-    pub fn publish(&mut self) -> Result<(), IoError> {
+    /// Closes the HDF5 file of the temporary path (if open). Collective.
+    fn close_temp(&mut self) -> Result<(), IoError> {
         let closed = match self.file.take() {
             Some(f) => f
                 .close()
                 .map_err(|e| IoError::hdf5(format!("closing {}", self.temp_path.display()), e)),
             None => Ok(()),
         };
-        agree(&self.comm, closed)?;
+        agree(&self.comm, closed)
+    }
+
+    /// Publishes the steps written so far: closes the HDF5 file, copies it to the target path
+    /// (under a second temporary name that is renamed over the target, so the target is always
+    /// a complete file), has rank 0 write the XDMF file, and reopens the temporary file to
+    /// continue writing. A run killed later leaves at the target the steps up to the last
+    /// publish. Collective.
+    pub fn publish(&mut self) -> Result<(), IoError> {
+        self.close_temp()?;
         let copied = if self.comm.rank() == 0 {
             let copy = self.temp_path.with_extension("publish");
             std::fs::copy(&self.temp_path, &copy)
@@ -662,13 +667,7 @@ impl ResultsFile {
     /// rank 0 write the XDMF file next to it. Collective; on error the temporary file is removed
     /// and an existing file at the target path is left as it was.
     pub fn close(mut self) -> Result<(), IoError> {
-        let closed = match self.file.take() {
-            Some(f) => f
-                .close()
-                .map_err(|e| IoError::hdf5(format!("closing {}", self.temp_path.display()), e)),
-            None => Ok(()),
-        };
-        agree(&self.comm, closed)?;
+        self.close_temp()?;
         let renamed = if self.comm.rank() == 0 {
             std::fs::rename(&self.temp_path, &self.final_path).map_err(|source| IoError::File {
                 path: self.final_path.clone(),
