@@ -911,26 +911,9 @@ impl<'a> StaticProblem<'a> {
         local
     }
 
-    /// Applies the loads in `n_steps` equal increments of the load factor λ from the committed
-    /// state to 1 ([`StaticProblem::advance`] until the stage's end). `on_step(λ)` is called
-    /// after every converged step.
-    pub fn solve_load_steps(
-        &mut self,
-        n_steps: u32,
-        max_cutbacks: u32,
-        report: &mut SolveReport,
-        mut on_step: impl FnMut(f64, &SolveReport),
-    ) -> Result<(), SolveError> {
-        let mut path = LoadPath::new(n_steps);
-        while !path.done() {
-            self.advance(&mut path, n_steps, max_cutbacks, report)?;
-            on_step(path.lambda, report);
-        }
-        Ok(())
-    }
-
-    /// One converged load step along `path` (a stage of `n_steps` equal increments of λ up to
-    /// 1): a failed increment is cut in half (at most `max_cutbacks` times in a row) and grown
+    /// One converged load step along `path` (a stage applies its loads in `n_steps` equal
+    /// increments of λ from the committed state to 1; the caller advances until
+    /// [`LoadPath::done`]): a failed increment is cut in half (at most `max_cutbacks` times in a row) and grown
     /// back after two successes. Every decision is collective, so all ranks take the same path.
     pub fn advance(
         &mut self,
