@@ -64,6 +64,12 @@ enum Command {
         /// parts may switch to step checkpoints for its long stages.
         #[arg(long, value_name = "stage|step|none", value_parser = parse_checkpoint)]
         checkpoint: Option<cfrd::scene::schema::CheckpointMode>,
+        /// Print every Newton iteration's relative residual and the reason of every cut-back,
+        /// with the node of the largest out-of-balance force (rank 0, standard error), as the
+        /// scene's `solver.monitor: true` does; the scene (and its hash, which a restart checks)
+        /// stays unchanged.
+        #[arg(long)]
+        monitor: bool,
     },
     /// Validate a scene (YAML, mesh, cross-references) without solving.
     Check {
@@ -284,6 +290,7 @@ fn main() -> ExitCode {
                 restart: None,
                 stop_after_stage: None,
                 checkpoint: None,
+                monitor: false,
             };
             let s = cfrd::run::bench_solver(world, dofs, &opts)?;
             if mpi::topology::Communicator::rank(world) == 0 {
@@ -324,6 +331,7 @@ fn main() -> ExitCode {
             restart,
             stop_after_stage,
             checkpoint,
+            monitor,
         } => with_mpi(|world| {
             let opts = cfrd::run::RunOptions {
                 scene,
@@ -333,6 +341,7 @@ fn main() -> ExitCode {
                 restart,
                 stop_after_stage,
                 checkpoint,
+                monitor,
             };
             cfrd::run::run(world, &opts)?;
             Ok(())

@@ -56,6 +56,10 @@ pub struct RunOptions {
     /// not part of the scene's hash, so a run continued with step checkpoints still restarts
     /// from its stage checkpoints).
     pub checkpoint: Option<CheckpointMode>,
+    /// Print every Newton iteration's residual and the reason and place of every cut-back
+    /// (`--monitor`), as the scene's `solver.monitor` does, without changing the scene (its
+    /// hash), so a run restarted from a checkpoint can be watched.
+    pub monitor: bool,
 }
 
 /// Where a run in parts ends (`--stop-after-stage K` or `+N`).
@@ -132,7 +136,8 @@ pub fn run(world: &SimpleCommunicator, opts: &RunOptions) -> Result<RunSummary, 
     let t_all = Instant::now();
     let mut timer = PhaseTimer::new();
     timer.start(Phase::Read);
-    let scene = load_scene(world, opts.scene.as_deref())?;
+    let mut scene = load_scene(world, opts.scene.as_deref())?;
+    scene.file.solver.monitor |= opts.monitor;
     run_scene(world, &scene, opts, timer, t_all)
 }
 

@@ -273,7 +273,7 @@ fn a_killed_run_restarts_from_its_last_checkpoint() {
 
 /// A step checkpoint (`output.checkpoint: step`, written after every converged load step): a
 /// 2-rank run killed as soon as its first checkpoint appears (inside the first stage's 6 load
-/// steps) and restarted from it continues inside that stage and ends bitwise where the
+/// steps) and restarted from it (with `--monitor`) continues inside that stage and ends bitwise where the
 /// uninterrupted run with step checkpoints ends, with the same solver counters. A step
 /// checkpoint has the stage's load path; a stage checkpoint has none.
 #[test]
@@ -307,11 +307,19 @@ fn a_run_killed_inside_a_stage_restarts_from_its_step_checkpoint() {
             "rest",
             "--restart",
             "killed/checkpoint.h5",
+            "--monitor",
         ],
     );
     assert!(o.status.success(), "{}", text(&o));
     let expected = format!("in stage 1 'fill_1' at λ = {:.3}", path[0]);
     assert!(text(&o).contains(&expected), "{}", text(&o));
+    // `--monitor` prints the Newton iterations and leaves the scene's hash (the restart is
+    // accepted) and the numbers (checked below) as they are
+    assert!(
+        text(&o).contains("iteration 1: relative residual"),
+        "{}",
+        text(&o)
+    );
     assert_bitwise(&d.join("full/results.h5"), &d.join("rest/results.h5"), 0);
     let (s_full, s_rest) = (summary(&d.join("full")), summary(&d.join("rest")));
     for key in [
