@@ -70,6 +70,12 @@ enum Command {
         /// stays unchanged.
         #[arg(long)]
         monitor: bool,
+        /// Integrate every generalized-plasticity material at a substepping tolerance of at most
+        /// R·newton_tol (the scene's `solver.integration_tol_ratio`, which this caps further);
+        /// the scene (and its hash) stays unchanged, so a run whose Newton iterations stall at
+        /// the integration noise can be continued from its checkpoint with, e.g., R = 0.1.
+        #[arg(long, value_name = "R")]
+        integration_tol_ratio: Option<f64>,
     },
     /// Validate a scene (YAML, mesh, cross-references) without solving.
     Check {
@@ -291,6 +297,7 @@ fn main() -> ExitCode {
                 stop_after_stage: None,
                 checkpoint: None,
                 monitor: false,
+                integration_tol_ratio: None,
             };
             let s = cfrd::run::bench_solver(world, dofs, &opts)?;
             if mpi::topology::Communicator::rank(world) == 0 {
@@ -332,6 +339,7 @@ fn main() -> ExitCode {
             stop_after_stage,
             checkpoint,
             monitor,
+            integration_tol_ratio,
         } => with_mpi(|world| {
             let opts = cfrd::run::RunOptions {
                 scene,
@@ -342,6 +350,7 @@ fn main() -> ExitCode {
                 stop_after_stage,
                 checkpoint,
                 monitor,
+                integration_tol_ratio,
             };
             cfrd::run::run(world, &opts)?;
             Ok(())

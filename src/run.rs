@@ -60,6 +60,11 @@ pub struct RunOptions {
     /// (`--monitor`), as the scene's `solver.monitor` does, without changing the scene (its
     /// hash), so a run restarted from a checkpoint can be watched.
     pub monitor: bool,
+    /// Cap the substepping tolerance of every GP material at this multiple of the Newton
+    /// tolerance (`--integration-tol-ratio`, see
+    /// [`crate::scene::schema::SolverSpec::integration_tol_ratio`]), without changing the scene
+    /// (its hash), so a run stalled at the integration noise continues from its checkpoint.
+    pub integration_tol_ratio: Option<f64>,
 }
 
 /// Where a run in parts ends (`--stop-after-stage K` or `+N`).
@@ -138,6 +143,12 @@ pub fn run(world: &SimpleCommunicator, opts: &RunOptions) -> Result<RunSummary, 
     timer.start(Phase::Read);
     let mut scene = load_scene(world, opts.scene.as_deref())?;
     scene.file.solver.monitor |= opts.monitor;
+    if let Some(ratio) = opts.integration_tol_ratio {
+        // the same check on every rank: an invalid ratio fails on all alike
+        scene
+            .cap_integration_tol(ratio)
+            .map_err(|e| input(e.to_string()))?;
+    }
     run_scene(world, &scene, opts, timer, t_all)
 }
 

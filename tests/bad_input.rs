@@ -101,6 +101,12 @@ fn cases() -> Vec<Case> {
             "boundary[0].set",
         ),
         (
+            "bad integration tolerance ratio",
+            GOOD.replace("loads:", "solver: { integration_tol_ratio: 2.0 }\nloads:"),
+            vec![],
+            "solver.integration_tol_ratio",
+        ),
+        (
             "bad petsc option",
             GOOD.replace(
                 "loads:",
@@ -156,6 +162,33 @@ fn bad_input_exits_2_with_a_clear_message_at_two_ranks() {
             "{case}: results written despite the error"
         );
     }
+}
+
+/// The command line's `--integration-tol-ratio` is checked like the scene key, on both ranks.
+#[test]
+fn a_bad_integration_tolerance_ratio_on_the_command_line_exits_2() {
+    let dir = tempdir();
+    std::fs::write(dir.path().join("scene.yaml"), GOOD).unwrap();
+    let o = cfrd_mpi(
+        2,
+        dir.path(),
+        &[
+            "run",
+            "scene.yaml",
+            "-o",
+            "out",
+            "--integration-tol-ratio",
+            "1.0e-9",
+        ],
+    );
+    let msg = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{msg}");
+    assert!(
+        msg.contains("--integration-tol-ratio") && msg.contains("1e-12"),
+        "{msg}"
+    );
+    assert!(!msg.contains("panicked"), "{msg}");
+    assert!(!dir.path().join("out/results.h5").exists());
 }
 
 #[test]

@@ -174,3 +174,69 @@ fn fill_load_steps_apply_to_the_fill_stages_only() {
     let err = message(with("0"));
     assert!(err.contains("mesh.cfrd.fill_load_steps"), "{err}");
 }
+
+/// A box of three layers of GP rockfill (own STOL `stol`) with the solver section `solver`.
+fn gp_box_scene(stol: &str, solver: &str) -> Result<Scene, SceneError> {
+    let text = format!(
+        "name: t\nunits: SI\nmesh: {{ box: {{ divisions: [1, 1, 3], layers: 3 }} }}\n\
+         materials:\n  a: {{ model: rockfill_gp, integration: {{ stol: {stol} }} }}\n\
+         blocks:\n  layer_*: {{ material: a }}\nsolver: {solver}\n"
+    );
+    Scene::from_str(&text, "t.yaml", Path::new("."))
+}
+
+fn gp_stols(scene: &Scene) -> Vec<f64> {
+    scene
+        .block_materials
+        .iter()
+        .map(|m| match m {
+            crate::material::BlockMaterial::Solid(crate::material::SolidParams::RockfillGp(p)) => {
+                p.integration.stol
+            }
+            other => panic!("{other:?}"),
+        })
+        .collect()
+}
+
+#[test]
+fn the_gp_substepping_tolerance_is_capped_at_a_multiple_of_the_newton_tolerance() {
+    // off by default: each material's own STOL
+    let own = gp_box_scene("1.0e-4", "{ newton_tol: 1.0e-5 }").expect("scene");
+    assert_eq!(gp_stols(&own), [1.0e-4; 3]);
+    // the fine seed scenes' remedy: STOL 1e-4 with newton_tol 1e-5 and R = 0.1 integrate at 1e-6
+    let capped = gp_box_scene("1.0e-4", "{ newton_tol: 1.0e-5, integration_tol_ratio: 0.1 }").expect("scene");
+    assert_eq!(gp_stols(&capped), [0.1 * 1.0e-5; 3]);
+    // a tolerance already below the cap is kept
+    let tight = gp_box_scene("1.0e-7", "{ newton_tol: 1.0e-5, integration_tol_ratio: 0.1 }").expect("scene");
+    assert_eq!(gp_stols(&tight), [1.0e-7; 3]);
+}
+
+#[test]
+fn the_command_line_cap_tightens_without_changing_the_scene_hash() {
+    let mut scene = gp_box_scene("1.0e-4", "{ newton_tol: 1.0e-5 }").expect("scene");
+    let hash = scene.hash.clone();
+    scene.cap_integration_tol(0.1).expect("valid ratio");
+    // the same value as the scene key gives, bit for bit
+    assert_eq!(gp_stols(&scene), [0.1 * 1.0e-5; 3]);
+    assert_eq!(scene.file.solver.integration_tol_ratio, 0.1);
+    assert_eq!(scene.hash, hash, "a restart must accept the capped run");
+    // a looser ratio does not undo a tighter one
+    scene.cap_integration_tol(0.5).expect("valid ratio");
+    assert_eq!(gp_stols(&scene), [0.1 * 1.0e-5; 3]);
+    let err = scene
+        .cap_integration_tol(2.0)
+        .expect_err("out of range")
+        .to_string();
+    assert!(err.contains("--integration-tol-ratio"), "{err}");
+}
+
+#[test]
+fn a_bad_integration_tolerance_ratio_names_its_yaml_path() {
+    for bad in ["-0.1", "2.0", ".nan", "1.0e-9"] {
+        let err = message(gp_box_scene(
+            "1.0e-4",
+            &format!("{{ newton_tol: 1.0e-5, integration_tol_ratio: {bad} }}"),
+        ));
+        assert!(err.contains("solver.integration_tol_ratio"), "{bad}: {err}");
+    }
+}

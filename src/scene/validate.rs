@@ -1,11 +1,11 @@
 //! Loading, validating and resolving a scene.
 
 use super::error::SceneError;
-use super::schema::{BlockSpec, HydrostaticSpec, LoadsSpec, MeshSource, SceneFile, StageSpec};
+use super::schema::{BlockSpec, HydrostaticSpec, LoadsSpec, MeshSource, SceneFile, SolverSpec, StageSpec};
 use super::term::Term;
 use crate::element::interface8::{Interface8Geometry, InterfaceRule};
 use crate::element::interface_frame::FrameAxes;
-use crate::material::{BlockMaterial, MaterialParams};
+use crate::material::{BlockMaterial, InterfaceParams, MaterialParams, SolidParams};
 use crate::mesh::cfrd::{cfrd_mesh, CfrdStage};
 use crate::mesh::ElementKind;
 use crate::mesh::{generate, Mesh};
@@ -90,7 +90,8 @@ impl Scene {
         let block_specs = match_blocks(&file.blocks, &mesh, &inv)?;
         let mut block_interface = Vec::with_capacity(mesh.blocks.len());
         for (b, (key, spec)) in mesh.blocks.iter().zip(&block_specs) {
-            let material = file.materials[&spec.material].split();
+            let mut material = file.materials[&spec.material].split();
+            cap_integration_tolerance(&mut material, &file.solver);
             let path = format!("blocks.{key}");
             block_interface.push(match (b.kind, &material) {
                 (ElementKind::Hex8, BlockMaterial::Solid(_)) => {
@@ -578,7 +579,69 @@ fn check_values(f: &SceneFile, inv: &dyn Fn(&str, String) -> SceneError) -> Resu
             format!("must lie in (0, 1), got {}", s.newton_tol),
         ));
     }
+    check_integration_tol_ratio(s, "solver.integration_tol_ratio", inv)
+}
+
+/// `solver.integration_tol_ratio` (or the command line's value, named `path`) is 0 or in
+/// (0, 1] with ratio·newton_tol ≥ 1e-12, the smallest substepping tolerance.
+fn check_integration_tol_ratio(
+    s: &SolverSpec,
+    path: &str,
+    inv: &dyn Fn(&str, String) -> SceneError,
+) -> Result<(), SceneError> {
+    let r = s.integration_tol_ratio;
+    if !(r.is_finite() && (r == 0.0 || (r * s.newton_tol >= 1.0e-12 && r <= 1.0))) {
+        return Err(inv(
+            path,
+            format!(
+                "must be 0 (off) or lie in (0, 1] with ratio·newton_tol ≥ 1e-12 (the smallest \
+                 substepping tolerance), got {r} (newton_tol {})",
+                s.newton_tol
+            ),
+        ));
+    }
     Ok(())
+}
+
+/// Applies `solver.integration_tol_ratio` to a block's material: a GP model (rockfill or
+/// interface) integrates at min(its STOL, ratio·newton_tol) ([`SolverSpec::capped_stol`],
+/// spec §8.1–§8.2).
+fn cap_integration_tolerance(material: &mut BlockMaterial, solver: &SolverSpec) {
+    match material {
+        BlockMaterial::Solid(SolidParams::RockfillGp(p)) => {
+            p.integration.stol = solver.capped_stol(p.integration.stol);
+        }
+        BlockMaterial::Interface(InterfaceParams::GpInterface(p)) => {
+            p.integration.stol = solver.capped_stol(p.integration.stol);
+        }
+        _ => {}
+    }
+}
+
+impl Scene {
+    /// Caps the substepping tolerance of every GP material further at `ratio`·newton_tol (the
+    /// command line's `--integration-tol-ratio`, see
+    /// [`SolverSpec::integration_tol_ratio`]); the scene text and its hash stay, so a run
+    /// stalled at the integration noise can be continued from its checkpoint. An invalid ratio
+    /// is an input error naming the option.
+    pub fn cap_integration_tol(&mut self, ratio: f64) -> Result<(), SceneError> {
+        let mut solver = self.file.solver.clone();
+        solver.integration_tol_ratio = ratio;
+        let inv = |path: &str, message: String| SceneError::Invalid {
+            file: self.source.clone(),
+            path: path.to_string(),
+            message,
+        };
+        check_integration_tol_ratio(&solver, "--integration-tol-ratio", &inv)?;
+        for m in &mut self.block_materials {
+            cap_integration_tolerance(m, &solver);
+        }
+        if ratio > 0.0 {
+            let own = self.file.solver.integration_tol_ratio;
+            self.file.solver.integration_tol_ratio = if own > 0.0 { own.min(ratio) } else { ratio };
+        }
+        Ok(())
+    }
 }
 
 /// Reads or generates the mesh, then validates it; a generated CFRD also gives its schedule.
