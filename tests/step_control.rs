@@ -101,3 +101,44 @@ fn a_step_that_cannot_be_completed_is_reported() {
     assert!(!msg.contains("writing the profiles"), "{msg}");
     assert!(!msg.contains("panicked"), "{msg}");
 }
+
+/// A step that fails within a decade of a GP substepping tolerance above `newton_tol` says that
+/// Newton may be stalled at the integration noise and names the remedy; with the tolerance
+/// capped below `newton_tol` (`solver.integration_tol_ratio`) the failure carries no such hint.
+#[test]
+fn a_failure_at_the_integration_noise_names_the_remedy() {
+    let dir = tempdir();
+    let loose = scene(2)
+        .replace(
+            "rockfill_gp, density: 2150.0",
+            "rockfill_gp, density: 2150.0, integration: { stol: 1.0e-2 }",
+        )
+        .replace(
+            "load_steps: 1, newton_max_iterations: 2",
+            "load_steps: 4, newton_max_iterations: 2, max_cutbacks: 0",
+        );
+    assert!(
+        loose.contains("stol: 1.0e-2") && loose.contains("max_cutbacks: 0"),
+        "{loose}"
+    );
+    let capped = loose.replace("max_cutbacks: 0", "max_cutbacks: 0, integration_tol_ratio: 0.1");
+    for (name, text_scene, hinted) in [("loose", &loose, true), ("capped", &capped, false)] {
+        std::fs::write(dir.path().join(format!("{name}.yaml")), text_scene).unwrap();
+        let o = cfrd_mpi(2, dir.path(), &["run", &format!("{name}.yaml"), "-o", name]);
+        let msg = text(&o);
+        assert_eq!(o.status.code(), Some(3), "{name}: {msg}");
+        assert!(
+            msg.contains("Newton did not converge in 2 iterations"),
+            "{name}: {msg}"
+        );
+        assert_eq!(
+            msg.contains("stalled at the integration noise") && msg.contains("--integration-tol-ratio 0.1"),
+            hinted,
+            "{name}: {msg}"
+        );
+        println!(
+            "{name}: {}",
+            msg.lines().find(|l| l.contains("error:")).unwrap_or("")
+        );
+    }
+}

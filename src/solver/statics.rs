@@ -25,7 +25,7 @@ use crate::element::interface_frame::FrameAxes;
 use crate::linalg::petsc::{
     CanonicalSettings, Gather, Matrix, Petsc, PetscError, Snes, SnesOutcome, SnesProblem, Vector,
 };
-use crate::material::BlockMaterial;
+use crate::material::{BlockMaterial, InterfaceParams, SolidParams};
 use crate::mesh::Mesh;
 use crate::parallel::{any_error, exact_norm2, exact_sum, sum_u64};
 use crate::parallel::{any_true, broadcast_vec, max_f64};
@@ -69,7 +69,7 @@ pub enum SolveError {
     /// Newton did not converge.
     #[error(
         "Newton did not converge in {iterations} iterations (relative residual {residual:.3e}); \
-         {worst}"
+         {worst}{hint}"
     )]
     Newton {
         /// Iterations done.
@@ -78,6 +78,8 @@ pub enum SolveError {
         residual: f64,
         /// Where the out-of-balance force of the last iterate is largest.
         worst: String,
+        /// Empty, or why the residual may not fall further ([`StaticProblem::stall_hint`]).
+        hint: String,
     },
     /// The line search found no step that reduces the residual.
     #[error(
@@ -1083,7 +1085,35 @@ impl<'a> StaticProblem<'a> {
                 iterations,
                 residual,
                 worst: problem.worst_node(&f_int, &f_ext, &targets)?,
+                hint: problem.stall_hint(residual),
             }),
+        }
+    }
+
+    /// A hint for a Newton solve that ended at `residual` (relative) without converging: when
+    /// the largest substepping tolerance STOL of the scene's GP materials lies above
+    /// `newton_tol` and the residual within a decade of it, the residual may be the noise of
+    /// the stress integration (spec §8.2; `solver.integration_tol_ratio`). Empty otherwise.
+    fn stall_hint(&self, residual: f64) -> String {
+        let tol = self.scene.file.solver.newton_tol;
+        let stol = self
+            .scene
+            .block_materials
+            .iter()
+            .filter_map(|m| match m {
+                BlockMaterial::Solid(SolidParams::RockfillGp(p)) => Some(p.integration.stol),
+                BlockMaterial::Interface(InterfaceParams::GpInterface(p)) => Some(p.integration.stol),
+                _ => None,
+            })
+            .reduce(f64::max);
+        match stol {
+            Some(stol) if stol > tol && residual < 10.0 * stol => format!(
+                "; the residual is within a decade of the GP substepping tolerance STOL = {stol:.1e}, \
+                 which lies above newton_tol = {tol:.1e}: Newton may be stalled at the integration \
+                 noise (cap STOL with `solver.integration_tol_ratio: 0.1` or `cfrd run \
+                 --integration-tol-ratio 0.1`)"
+            ),
+            _ => String::new(),
         }
     }
 
