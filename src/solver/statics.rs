@@ -78,7 +78,7 @@ pub enum SolveError {
         residual: f64,
         /// Where the out-of-balance force of the last iterate is largest.
         worst: String,
-        /// Empty, or why the residual may not fall further ([`StaticProblem::stall_hint`]).
+        /// Empty, or why the residual may not fall further (the GP integration noise, spec §8.2).
         hint: String,
     },
     /// The line search found no step that reduces the residual.
