@@ -299,6 +299,26 @@ impl MaterialParams {
 }
 
 impl BlockMaterial {
+    /// The substepping options (spec §8.2) of a generalized-plasticity model, rockfill or
+    /// interface; `None` for the other models.
+    pub fn gp_integration(&self) -> Option<&gp_integrator::SubstepOptions> {
+        match self {
+            BlockMaterial::Solid(SolidParams::RockfillGp(p)) => Some(&p.integration),
+            BlockMaterial::Interface(InterfaceParams::GpInterface(p)) => Some(&p.integration),
+            _ => None,
+        }
+    }
+
+    /// The substepping options of a generalized-plasticity model, to change
+    /// ([`BlockMaterial::gp_integration`]).
+    pub fn gp_integration_mut(&mut self) -> Option<&mut gp_integrator::SubstepOptions> {
+        match self {
+            BlockMaterial::Solid(SolidParams::RockfillGp(p)) => Some(&mut p.integration),
+            BlockMaterial::Interface(InterfaceParams::GpInterface(p)) => Some(&mut p.integration),
+            _ => None,
+        }
+    }
+
     /// Mass density (kg/m³) of a solid; zero for a (zero-thickness) interface.
     pub fn density(&self) -> f64 {
         match self {

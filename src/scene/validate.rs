@@ -5,7 +5,7 @@ use super::schema::{BlockSpec, HydrostaticSpec, LoadsSpec, MeshSource, SceneFile
 use super::term::Term;
 use crate::element::interface8::{Interface8Geometry, InterfaceRule};
 use crate::element::interface_frame::FrameAxes;
-use crate::material::{BlockMaterial, InterfaceParams, MaterialParams, SolidParams};
+use crate::material::{BlockMaterial, MaterialParams};
 use crate::mesh::cfrd::{cfrd_mesh, CfrdStage};
 use crate::mesh::ElementKind;
 use crate::mesh::{generate, Mesh};
@@ -607,14 +607,8 @@ fn check_integration_tol_ratio(
 /// interface) integrates at min(its STOL, ratio·newton_tol) ([`SolverSpec::capped_stol`],
 /// spec §8.1–§8.2).
 fn cap_integration_tolerance(material: &mut BlockMaterial, solver: &SolverSpec) {
-    match material {
-        BlockMaterial::Solid(SolidParams::RockfillGp(p)) => {
-            p.integration.stol = solver.capped_stol(p.integration.stol);
-        }
-        BlockMaterial::Interface(InterfaceParams::GpInterface(p)) => {
-            p.integration.stol = solver.capped_stol(p.integration.stol);
-        }
-        _ => {}
+    if let Some(o) = material.gp_integration_mut() {
+        o.stol = solver.capped_stol(o.stol);
     }
 }
 

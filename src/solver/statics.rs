@@ -25,7 +25,7 @@ use crate::element::interface_frame::FrameAxes;
 use crate::linalg::petsc::{
     CanonicalSettings, Gather, Matrix, Petsc, PetscError, Snes, SnesOutcome, SnesProblem, Vector,
 };
-use crate::material::{BlockMaterial, InterfaceParams, SolidParams};
+use crate::material::BlockMaterial;
 use crate::mesh::Mesh;
 use crate::parallel::{any_error, exact_norm2, exact_sum, sum_u64};
 use crate::parallel::{any_true, broadcast_vec, max_f64};
@@ -1100,11 +1100,7 @@ impl<'a> StaticProblem<'a> {
             .scene
             .block_materials
             .iter()
-            .filter_map(|m| match m {
-                BlockMaterial::Solid(SolidParams::RockfillGp(p)) => Some(p.integration.stol),
-                BlockMaterial::Interface(InterfaceParams::GpInterface(p)) => Some(p.integration.stol),
-                _ => None,
-            })
+            .filter_map(|m| m.gp_integration().map(|o| o.stol))
             .reduce(f64::max);
         match stol {
             Some(stol) if stol > tol && residual < 10.0 * stol => format!(
