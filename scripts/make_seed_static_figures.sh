@@ -20,7 +20,9 @@
 #   the stages it ran; parts killed by an older cfrd kept none),
 #   copies them as seed_fine_hyperbolic_fig*.png, overlays the hyperbolic slab profiles of the three meshes as
 #   seed_hyperbolic_meshes.png and adds a row fine_hyperbolic with the wall time summed over
-#   DIR/parts.csv and the largest per-rank memory of the parts.
+#   DIR/parts.csv and the largest per-rank memory of the parts. A part that was paused (kill
+#   -STOP, to keep other work off its clock) gets its net seconds written into parts.csv by
+#   hand; an empty peak_rss_kib (a killed part without /usr/bin/time's report) is skipped.
 # The scenes use the canonical LU (solver.linear_solver: canonical_lu), so the 1- and 2-rank
 # results are expected to be identical.
 set -euo pipefail
@@ -75,12 +77,15 @@ if [ ${#medium[@]} -eq 3 ]; then
 fi
 fine=""
 if [ -n "${FINE:-}" ]; then
-    fine="$(ls -d "$FINE"/part_* | sort -V | tail -n 1)"
+    # the parts are the directories part_<k> (run_in_parts.sh keeps each part's log beside it)
+    fine="$(ls -d "$FINE"/part_*/ | sort -V | tail -n 1)"
+    fine="${fine%/}"
     [ -f "$fine/summary.json" ] || { echo "$fine has not finished (no summary.json)" >&2; exit 1; }
     # a part killed by a cfrd that published its results only at the end has no results.h5
     # (only its checkpoint): its stages are missing from the probe history
     parts=()
-    for p in $(ls -d "$FINE"/part_* | sort -V); do
+    for p in $(ls -d "$FINE"/part_*/ | sort -V); do
+        p="${p%/}"
         if [ -f "$p/results.h5" ]; then parts+=("$p"); else echo "$p: no results.h5 (killed), its stages are not drawn"; fi
     done
     "$bin" profiles inputs/scenes/seed_fine_hyperbolic.yaml "${parts[@]}" -o "$FINE/profiles"
@@ -101,7 +106,7 @@ rss = max(s["peak_memory_bytes_per_rank"]) / 2**20
 if sys.argv[4]:  # a run in parts: the parts' wall times add up, the memory is the largest part's
     parts = list(csv.DictReader(open(sys.argv[4])))
     wall = sum(float(p["wall_seconds"]) for p in parts)
-    rss = max([rss] + [float(p["peak_rss_kib"]) / 1024 for p in parts])
+    rss = max([rss] + [float(p["peak_rss_kib"]) / 1024 for p in parts if p["peak_rss_kib"]])
 print(f'{sys.argv[2]},{sys.argv[3]},{wall:.0f},{rss:.0f},{s["newton_iterations"]},{s["steps"]},'
       f'{s["cutbacks"]},{s["interface_points"]},{s["interface_open"]},{s["interface_slipping"]},'
       f'{max(s["newton_per_step"])},{s.get("factorizations", 0)}')
