@@ -39,6 +39,15 @@
 //!   substep; while open s = 0 and the material is frozen (e, W_p, Δe_c, η_max, σ_c,max);
 //!   shear jumps while open are free (they count in the output slip, not in the material);
 //!   re-closure when the gap is consumed, at σ_n = σ_min, τ = 0, r_A = 0 (spec §2.12).
+//! * **(I18) reversal branch**: `reversal_branch = start` (default) reads the loading criterion
+//!   after a reversal at the substep's start, where the point is its own reversal point;
+//!   `trial` reads it again at the substep's elastic trial point when the start says
+//!   "not loading". With `start`, a path whose every substep starts just on the unloading side
+//!   (the indicator −8.2e-5 or −2.1e-4, loading a little further on) moves its reversal point
+//!   along at every substep, and the change-point retries creep on by about 1e-6 of the step
+//!   until NMAX (test `neutral_loading_path_does_not_stall_with_the_trial_reading`; the two
+//!   paths followed with `trial`). `trial` changes every unloading that turns into reverse
+//!   loading within a substep, so the seed runs keep `start` until their figures are redone.
 //! * **G7 (cyclic densification)**: `elastic_void_ratio = initial` (default) evaluates the
 //!   elastic factor (1+e)/e of (I3) at e0; `current` uses the current e of (I6). The current e
 //!   still drives ψ, hence M_d, M_f, η_p and H. Evidence and costs: "Findings" below.
@@ -262,6 +271,22 @@ pub enum StiffnessBasis {
     Strain,
 }
 
+/// Where the loading criterion is read after a reversal at a substep's start (spec (I18),
+/// tagged [INF]; see "Reversal branch" in the module docs).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum ReversalBranch {
+    /// (I18) steps 2–5 at the start itself: the point is its own new reversal point, and the
+    /// re-mapped nᵀdσe decides (default; the results of the README's seed runs).
+    #[default]
+    Start,
+    /// When the re-mapped nᵀdσe at the start is not loading, it is read again at the elastic
+    /// trial point σ + dσe of the substep, away from the new reversal point: a reversal is then
+    /// followed by reverse loading where the substep moves into loading ("unloading is plastic
+    /// from the start", spec (I18)).
+    Trial,
+}
+
 /// Tangent returned by the update (spec §8.5).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
@@ -336,6 +361,9 @@ pub struct GpInterfaceParams {
     /// Void ratio in the elastic factor (1+e)/e (spec (I3), G7).
     #[serde(default)]
     pub elastic_void_ratio: ElasticVoidRatio,
+    /// Where the branch after a reversal is decided (spec (I18)).
+    #[serde(default)]
+    pub reversal_branch: ReversalBranch,
     /// Stress floor σ_min used in the stress-dependent moduli (Pa). Spec: 1 kPa.
     #[serde(default = "default_sigma_min")]
     pub sigma_min: f64,
@@ -392,6 +420,7 @@ impl Default for GpInterfaceParams {
             fh_mode: FhMode::default(),
             stiffness_basis: StiffnessBasis::default(),
             elastic_void_ratio: ElasticVoidRatio::default(),
+            reversal_branch: ReversalBranch::default(),
             sigma_min: default_sigma_min(),
             pa: default_pa(),
             sigma_open: 0.0,

@@ -25,7 +25,9 @@
 //! * After an accepted substep η_max and σ_c,max are updated (spec G7).
 
 use super::gp_integrator::{cosine, Branch, GpModelFunctions, GpPoint, PlasticData, StageIncrement};
-use super::interface_gp::{ElasticVoidRatio, FhMode, GpBranch, GpInterface, GpInterfaceState, PeakForm};
+use super::interface_gp::{
+    ElasticVoidRatio, FhMode, GpBranch, GpInterface, GpInterfaceState, PeakForm, ReversalBranch,
+};
 use crate::error::MaterialError;
 use nalgebra::{Matrix3, SVector, Vector2, Vector3};
 
@@ -476,7 +478,8 @@ impl GpModelFunctions<3, KAPPA> for GpInterface {
         Ok(cosine(&self.functions_at(pt, d_eps).n, d_sig_e))
     }
 
-    /// Loading criterion and reversal rule (spec (I17), (I18)).
+    /// Loading criterion and reversal rule (spec (I17), (I18)); with `reversal_branch = trial`
+    /// a reversal that is not loading at the start is read again at σ + dσe.
     fn begin_substep(
         &self,
         pt: &mut InterfacePoint,
@@ -490,7 +493,12 @@ impl GpModelFunctions<3, KAPPA> for GpInterface {
         }
         if c < -tol_n {
             pt.memory.reversal_point = self.stress_ratio(&pt.sigma.into());
-            let c2 = self.loading_indicator(pt, d_eps, d_sig_e)?;
+            let mut c2 = self.loading_indicator(pt, d_eps, d_sig_e)?;
+            if c2 <= tol_n && self.params.reversal_branch == ReversalBranch::Trial {
+                let mut trial = pt.clone();
+                trial.sigma += d_sig_e;
+                c2 = self.loading_indicator(&trial, d_eps, d_sig_e)?;
+            }
             let br = if c2 > tol_n {
                 Branch::Loading
             } else {
