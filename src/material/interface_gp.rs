@@ -272,7 +272,7 @@ pub enum StiffnessBasis {
 }
 
 /// Where the loading criterion is read after a reversal at a substep's start (spec (I18),
-/// tagged [INF]; see "Reversal branch" in the module docs).
+/// an inferred reading; see "(I18) reversal branch" in the module docs).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum ReversalBranch {
