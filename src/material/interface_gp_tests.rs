@@ -1206,8 +1206,8 @@ fn try_run_path(
 /// and −8.2e-5, beyond tolN = 1e-6). At the end of the substep, away from the new reversal point,
 /// the indicator is loading (+4.3e-2 after dT = 5.5e-2 on the 259 kPa path). The linear
 /// change-point estimate retries at 2.7e-4 (still loading, +9.2e-3), then at 6.1e-6, where the
-/// indicator has not moved: that substep is taken as unloading, and the next one starts on the unloading side again with the reversal
-/// point moved along. So the integration creeps on by about 6e-6 per three attempts. A DT_MIN
+/// indicator has not moved: that substep is taken as unloading, and the next one starts on the
+/// unloading side again with the reversal point moved along. So the integration creeps on by about 6e-6 per three attempts. A DT_MIN
 /// rule (retry on the end's branch when the change point is within DT_MIN of the start) does not
 /// reach it: the estimated change point stays above DT_MIN. The likely remedy is in the model, not
 /// in the integrator: read (I18) step 2 with the mapping evaluated along the trial increment, so
@@ -1293,6 +1293,7 @@ fn neutral_loading_path_does_not_stall_with_the_trial_reading() {
     let b = try_run_path(&trial, 300.0e3, &virgin).expect("virgin shear");
     assert_eq!(a.stress, b.stress);
 }
+
 fn states_close(a: &GpInterfaceState, b: &GpInterfaceState, rel: f64) -> bool {
     let va = serde_json::to_value(a).expect("value");
     let vb = serde_json::to_value(b).expect("value");

@@ -262,8 +262,8 @@ pub struct SolverSpec {
     /// of about STOL when that lies above `newton_tol`. Measured on the fine seed mesh (slab
     /// stage II, newton_tol 1e-5, the spec's STOL 1e-4): the first load step's residual stayed
     /// at 1.125e-4 for 14 iterations, and after two half steps the step to λ = 0.25 stalled at
-    /// 1.128e-4; at STOL 1e-6 (R = 0.1) that step converged in 3 iterations. A tighter STOL costs substeps (about STOL^−1/2 each
-    /// where an increment needs several): on the small GP dam of `tests/cfrd_dam.rs` with one
+    /// 1.128e-4; at STOL 1e-6 (R = 0.1) that step converged in 3 iterations. A tighter STOL
+    /// costs substeps (about STOL^−1/2 each where an increment needs several): on the small GP dam of `tests/cfrd_dam.rs` with one
     /// load step per stage R = 0.1 exhausts the substep limit, so the cap is for small load
     /// steps on fine meshes. Default 0 (off: each material's own STOL). The command line's
     /// `--integration-tol-ratio` caps further without changing the scene (a restart accepts it).
