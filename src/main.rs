@@ -384,7 +384,7 @@ fn partition_ahead(scene: &std::path::Path, parts: usize, out: &std::path::Path)
         return Err("--parts must be at least 1".into());
     }
     let s = cfrd::scene::Scene::load(scene).map_err(|e| e.to_string())?;
-    let cells = cfrd::solver::statics::mesh_cells(&s.mesh);
+    let cells = cfrd::solver::mesh_cells(&s.mesh);
     let n = s.mesh.num_nodes();
     let (band, n_bands) = cfrd::run::construction_bands(&s);
     let part =

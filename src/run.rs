@@ -3,15 +3,15 @@
 //! Every input error is decided collectively ([`crate::parallel::any_error`]), so all ranks
 //! stop together with exit code 2 and rank 0 prints the message.
 
+use crate::io::checkpoint::{self, CHECKPOINT_FILE};
 use crate::io::hdf5_out::{strain_output_components, OwnedMesh, ResultsFile, StepInfo};
 use crate::io::summary::{Phase, PhaseTimer, RunSummary, StageSeconds};
 use crate::linalg::petsc::Petsc;
 use crate::parallel::{any_error, broadcast_vec, EXIT_INPUT, EXIT_SOLVER};
 use crate::scene::schema::CheckpointMode;
 use crate::scene::Scene;
-use crate::solver::checkpoint::{self, CHECKPOINT_FILE};
 use crate::solver::discretization::Discretization;
-use crate::solver::statics::{mesh_cells, LoadPath, LocalResults, SolveReport, StaticProblem};
+use crate::solver::{mesh_cells, LocalResults, Problem, SolveReport, StepControl};
 use mpi::topology::{Communicator, SimpleCommunicator};
 use partition::{partition_elements_by_band, Partition, PartitionFile};
 use std::path::{Path, PathBuf};
@@ -196,7 +196,7 @@ pub fn run_scene(
         .insert_options(&scene.file.solver.petsc_options)
         .and_then(|_| petsc.insert_options(&opts.petsc_options.join(" ")));
     any_error(world, opt_result).map_err(|m| input(format!("PETSc options: {m}")))?;
-    let setup = StaticProblem::new(&petsc, scene, cells, disc);
+    let setup = Problem::new(&petsc, world, scene, cells, disc);
     let mut problem = any_error(world, setup).map_err(|m| input(format!("setting up the solver: {m}")))?;
     timer.stop();
 
@@ -216,7 +216,7 @@ pub fn run_scene(
                 path.display(),
                 first_stage + 1,
                 scene.stages[first_stage].name,
-                p.lambda
+                p.t
             ),
             None => format!(
                 "restarted from {} after stage {first_stage} '{}'",
@@ -292,17 +292,17 @@ pub fn run_scene(
                     failure = Some(m);
                     break;
                 }
-                LoadPath::new(stage.load_steps)
+                StepControl::new(1.0, stage.load_steps)
             }
         };
         let bar = progress_bar(rank == 0 && opts.verbose, stage.load_steps as u64);
         let mut solved = Ok(());
         while solved.is_ok() && !path.done() {
-            solved = problem.advance(&mut path, stage.load_steps, sopts.max_cutbacks, &mut report);
+            solved = problem.advance(&mut path, sopts.max_cutbacks, &mut report);
             if solved.is_err() {
                 break;
             }
-            let lambda = path.lambda;
+            let lambda = path.t;
             if step_lines {
                 eprintln!(
                     "  λ = {lambda:.3} after {:.0} s ({} Newton iterations, {} cut-backs in the run so far)",
@@ -477,9 +477,9 @@ fn write_checkpoint(
     world: &SimpleCommunicator,
     ckpt: &Path,
     scene: &Scene,
-    problem: &StaticProblem,
+    problem: &Problem,
     report: &SolveReport,
-    within: Option<LoadPath>,
+    within: Option<StepControl>,
 ) -> Result<f64, RunFailure> {
     let t0 = Instant::now();
     let written = checkpoint::write(world, ckpt, scene, problem, report, within);

@@ -69,7 +69,7 @@
 //! [`ResultsFile::write_group_attrs`] its metadata; [`ResultsReader::read_owned`] gives each
 //! rank back the rows it owns under a possibly different rank count. The static solver's
 //! checkpoint (`checkpoint.h5`, a `/checkpoint` group with one row per node or element) is
-//! described in `crate::solver::checkpoint`.
+//! described in [`checkpoint`].
 //!
 //! # Use from the solver
 //!
@@ -98,6 +98,7 @@
 //! * The file is written under a temporary name (`.results.h5.partial-<pid>`) and renamed into
 //!   place by [`ResultsFile::close`]; a writer dropped without closing removes it.
 
+pub mod checkpoint;
 pub mod compare;
 pub mod error;
 pub mod hdf5_out;

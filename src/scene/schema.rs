@@ -371,7 +371,7 @@ pub enum CheckpointMode {
     /// After every converged load step, and at the end of every stage: a restart continues
     /// inside the stage (for stages that take longer than a job may run). Each such
     /// checkpoint also starts a fresh preconditioner, so the results differ in the last bits
-    /// from a run with stage checkpoints (`solver::checkpoint`).
+    /// from a run with stage checkpoints (`io::checkpoint`).
     Step,
     /// Never.
     None,

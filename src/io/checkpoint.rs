@@ -32,7 +32,7 @@
 //!   elem_ref             f64 [n_elements, 24]   displacement of each element's nodes at placement
 //!   state_bytes          u64 [n_elements]       length of each element's encoded states
 //!   states               u8  [n_elements, w]    committed point states of each element
-//!                                               ([`super::state_codec`]), zero-padded to the
+//!                                               ([`crate::solver::state_codec`]), zero-padded to the
 //!                                               longest (w bytes)
 //!   report               u8  [len]              JSON of the load-step, Newton and KSP counters
 //!                                               ([`SolveReport`] without timings and residuals)
@@ -51,17 +51,17 @@
 //! results differ in the last bits from a run with stage checkpoints only (the factors are
 //! reused over fewer steps).
 //!
-//! Not stored, because [`StaticProblem::begin_stage`] of the next stage recomputes them: the
+//! Not stored, because [`Problem::begin_stage`] of the next stage recomputes them: the
 //! fixed DOFs and their start values, and which nodes were placed before the stage.
 
-use super::discretization::Discretization;
-use super::statics::{LoadPath, SolveReport, StageProgress, StaticProblem};
-use crate::io::error::agree;
-use crate::io::{IoError, Redistribution, ResultsFile, ResultsReader};
+use super::error::agree;
+use super::{IoError, Redistribution, ResultsFile, ResultsReader};
 use crate::mesh::Mesh;
 use crate::parallel::broadcast_vec;
 use crate::scene::validate::fnv1a;
 use crate::scene::Scene;
+use crate::solver::discretization::Discretization;
+use crate::solver::{Problem, ProblemState, SolveReport, StageProgress, StepControl};
 use mpi::topology::SimpleCommunicator;
 use mpi::traits::{Communicator, CommunicatorCollectives};
 use std::path::Path;
@@ -71,31 +71,6 @@ pub const CHECKPOINT_VERSION: u64 = 1;
 
 /// File name of the checkpoint in the output directory.
 pub const CHECKPOINT_FILE: &str = "checkpoint.h5";
-
-/// The state of the static problem on one rank at the end of a stage, in this rank's owned
-/// order (nodes of `Discretization::owned_nodes`; elements of `owned_elements` when saved, of
-/// `Discretization::elements`, the evaluated ones, when read back).
-#[derive(Debug, Clone, PartialEq, Default)]
-pub struct ProblemState {
-    /// Number of completed stages (the next stage, or the one in progress, has this index).
-    pub stages_done: usize,
-    /// For a step checkpoint: the stage in progress (index `stages_done`) and its load path.
-    pub in_stage: Option<StageProgress>,
-    /// Whether each block is placed (all blocks).
-    pub active_block: Vec<bool>,
-    /// Whether each node belongs to a placed element (all nodes).
-    pub node_active: Vec<bool>,
-    /// Displacement, 3 values per owned node (m).
-    pub u: Vec<f64>,
-    /// External force of the last stage, 3 values per owned node (N).
-    pub f_prev: Vec<f64>,
-    /// Zero of the reported displacement of each owned node (m).
-    pub node_offset: Vec<[f64; 3]>,
-    /// Displacement of each owned element's nodes at its placement (m).
-    pub elem_ref: Vec<[f64; 24]>,
-    /// Encoded committed point states of each owned element ([`super::state_codec`]).
-    pub element_states: Vec<Vec<u8>>,
-}
 
 /// FNV-1a hash (hex) of the mesh: coordinates (bits), connectivity and block of every element.
 /// A checkpoint is refused for a mesh with another hash.
@@ -145,9 +120,9 @@ pub fn write(
     world: &SimpleCommunicator,
     path: &Path,
     scene: &Scene,
-    problem: &StaticProblem,
+    problem: &Problem,
     report: &SolveReport,
-    within: Option<LoadPath>,
+    within: Option<StepControl>,
 ) -> Result<(), IoError> {
     let saved = problem
         .save_state(within)
@@ -188,7 +163,7 @@ pub fn write(
         file.write_table("/checkpoint/u_stage_start", &node_plan, 3, &p.u_stage_start)?;
         let was = flags(p.node_was_active.iter().copied());
         file.write_table("/checkpoint/node_was_active", &node_plan, 1, &was)?;
-        let path = [p.path.lambda, p.path.d_lambda, f64::from(p.path.streak)];
+        let path = [p.path.t, p.path.dt, f64::from(p.path.streak)];
         write_replicated(&mut file, "/checkpoint/load_path", &path)?;
     }
     // the counters are the same on every rank; rank 0's are stored (timings are per run; the
@@ -340,12 +315,9 @@ pub fn read(
                 if !fits {
                     return Err(bad("the stored load path of the stage in progress is not valid"));
                 }
+                let stage = &scene.stages[stages_done];
                 Some(StageProgress {
-                    path: LoadPath {
-                        lambda: path[0],
-                        d_lambda: path[1],
-                        streak: path[2] as u32,
-                    },
+                    path: StepControl::resumed(path[0], path[1], path[2] as u32, 1.0, stage.load_steps),
                     u_stage_start: sized("u_stage_start", start, 3 * nn)?,
                     node_was_active: was.iter().map(|&f| f != 0).collect(),
                 })
@@ -377,14 +349,14 @@ pub fn read(
 /// Reads a checkpoint and restores `problem` and the counters in `report` from it; returns the
 /// number of completed stages (the index of the stage to run or continue next) and, for a step
 /// checkpoint, the load path to continue that stage from (the problem is then inside the
-/// stage, [`StaticProblem::resume_stage`]). Collective.
+/// stage, [`Problem::resume_stage`]). Collective.
 pub fn restore(
     world: &SimpleCommunicator,
     path: &Path,
     scene: &Scene,
-    problem: &mut StaticProblem,
+    problem: &mut Problem,
     report: &mut SolveReport,
-) -> Result<(usize, Option<LoadPath>), IoError> {
+) -> Result<(usize, Option<StepControl>), IoError> {
     let (state, counters) = read(world, path, scene, problem.discretization())?;
     let restored = problem
         .restore_state(&state)
