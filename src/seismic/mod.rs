@@ -1,6 +1,7 @@
 //! Seismic input: the design response spectrum of the Chinese hydraulic codes, elastic
 //! response spectra, spectrum-compatible artificial accelerograms, record readers and the
-//! `cfrd accel` command (spec seismic §1, §2).
+//! `cfrd accel` command (spec seismic §1, §2; the generator's algorithm and measured
+//! performance are in [`algorithm`]).
 //!
 //! A time integrator loads a record and evaluates the ground acceleration a_g(t) (m/s², axes
 //! x stream, y dam axis, z up) with [`Accelerogram`]:
@@ -11,6 +12,7 @@
 //! let [a_x, a_y, a_z] = record.at(1.234);
 //! ```
 
+pub mod algorithm;
 pub mod at2;
 pub mod command;
 pub mod correction;
