@@ -19,6 +19,7 @@
 //! | [`point`] | `cfrd point`: material-point tests from YAML, CSV and PNG output |
 //! | [`plot`] | PNG line plots (figures of point tests and dam outputs) |
 //! | [`profiles`] | the seed's static outputs (Figs. 7–11): slab, interface and dam profiles, probes |
+//! | [`seismic`] | design spectrum, response spectra, artificial accelerograms, record readers, `cfrd accel` |
 //!
 //! The native parallel stack (MPI, PETSc, parallel HDF5, METIS) is behind the default
 //! `native` feature; the constitutive library, the mesh code and the element kernels build
@@ -41,6 +42,7 @@ pub mod profiles;
 #[cfg(feature = "native")]
 pub mod run;
 pub mod scene;
+pub mod seismic;
 pub mod solver;
 pub mod tensor;
 #[cfg(test)]
