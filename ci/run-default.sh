@@ -17,6 +17,7 @@ bin="${CARGO_TARGET_DIR:-target}/release/cfrd"
 scene=${SCENE:-inputs/scenes/seed_coarse_gp_interface.yaml}
 ranks=${RANKS:-2}
 out=${1:-out/seed_coarse}
+out=${out%/}
 marker=.cfrd-run-default # written into every output directory of this script
 
 if [ -e "$out" ] && [ ! -f "$out/$marker" ] && [ -n "$(ls -A "$out" 2>/dev/null)" ]; then
