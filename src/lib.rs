@@ -4,6 +4,9 @@
 //!
 //! | module | what it holds |
 //! |---|---|
+//! | [`guide`] | user guide (documentation only): scene format, command line, restart, runs in parts, outputs, exit codes, PETSc options |
+//! | [`verification`] | what has been checked (documentation only): solver checks, material points, the seed dam's Figs. 7–11 on three meshes |
+//! | [`performance`] | measured run times, memory, Newton and solver figures, each with its commit and command (documentation only) |
 //! | [`conventions`] | units, axes, signs, Voigt order, frames (read first) |
 //! | [`tensor`] | Voigt stress/strain/tangent newtypes |
 //! | [`material`] | constitutive library: elastic, rockfill GP, interface laws, joints |
@@ -28,6 +31,7 @@
 pub mod conventions;
 pub mod element;
 pub mod error;
+pub mod guide;
 #[cfg(feature = "native")]
 pub mod io;
 #[cfg(feature = "native")]
@@ -36,6 +40,7 @@ pub mod material;
 pub mod mesh;
 #[cfg(feature = "native")]
 pub mod parallel;
+pub mod performance;
 pub mod plot;
 pub mod point;
 pub mod profiles;
@@ -47,3 +52,4 @@ pub mod solver;
 pub mod tensor;
 #[cfg(test)]
 mod test_support;
+pub mod verification;
