@@ -37,10 +37,14 @@
 //!   report               u8  [len]              JSON of the load-step, Newton and KSP counters
 //!                                               ([`SolveReport`] without timings and residuals)
 //!   (step checkpoints only, `output.checkpoint: step`:)
-//!   load_path            f64 [3]                λ reached in the stage in progress, the next
+//!   load_path            f64 [3]                time reached in the stage in progress (λ of a
+//!                                               static stage, s of a dynamic one), the next
 //!                                               increment, converged steps since it changed
 //!   u_stage_start        f64 [n_nodes, 3]       displacement at the start of that stage (m)
 //!   node_was_active      i64 [n_nodes]          1 if the node was placed before that stage
+//!   (step checkpoints of a dynamic stage only:)
+//!   velocity             f64 [n_nodes, 3]       velocity relative to the base (m/s)
+//!   acceleration         f64 [n_nodes, 3]       acceleration relative to the base (m/s²)
 //! ```
 //!
 //! A step checkpoint (written after every converged load step that does not end a stage) has
@@ -61,6 +65,7 @@ use crate::parallel::broadcast_vec;
 use crate::scene::validate::fnv1a;
 use crate::scene::Scene;
 use crate::solver::discretization::Discretization;
+use crate::solver::integrator::Rates;
 use crate::solver::{Problem, ProblemState, SolveReport, StageProgress, StepControl};
 use mpi::topology::SimpleCommunicator;
 use mpi::traits::{Communicator, CommunicatorCollectives};
@@ -165,6 +170,10 @@ pub fn write(
         file.write_table("/checkpoint/node_was_active", &node_plan, 1, &was)?;
         let path = [p.path.t, p.path.dt, f64::from(p.path.streak)];
         write_replicated(&mut file, "/checkpoint/load_path", &path)?;
+        if let Some(r) = &p.rates {
+            file.write_table("/checkpoint/velocity", &node_plan, 3, &r.velocity)?;
+            file.write_table("/checkpoint/acceleration", &node_plan, 3, &r.acceleration)?;
+        }
     }
     // the counters are the same on every rank; rank 0's are stored (timings are per run; the
     // residual history is not needed and may hold a non-finite value, which JSON cannot)
@@ -281,7 +290,14 @@ pub fn read(
         let start = reader.read_owned::<f64>("/checkpoint/u_stage_start", &node_plan)?;
         let was = reader.read_owned::<i64>("/checkpoint/node_was_active", &node_plan)?;
         let (path, _) = reader.read_all::<f64>("/checkpoint/load_path")?;
-        Some((start, was, path))
+        let rates = if reader.shape("/checkpoint/velocity").is_ok() {
+            let v = reader.read_owned::<f64>("/checkpoint/velocity", &node_plan)?;
+            let a = reader.read_owned::<f64>("/checkpoint/acceleration", &node_plan)?;
+            Some((v, a))
+        } else {
+            None
+        };
+        Some((start, was, path, rates))
     } else {
         None
     };
@@ -305,9 +321,10 @@ pub fn read(
             .map_err(|e| bad(&format!("the stored solver counters do not parse ({e})")))?;
         let in_stage = match progress {
             None => None,
-            Some((start, was, path)) => {
+            Some((start, was, path, rates)) => {
+                let stage = &scene.stages[stages_done];
                 let fits = path.len() == 3
-                    && (0.0..1.0).contains(&path[0])
+                    && (0.0..stage.t_end()).contains(&path[0])
                     && path[1] > 0.0
                     && path[2] >= 0.0
                     && path[2].fract() == 0.0
@@ -315,9 +332,26 @@ pub fn read(
                 if !fits {
                     return Err(bad("the stored load path of the stage in progress is not valid"));
                 }
-                let stage = &scene.stages[stages_done];
+                if rates.is_some() != stage.dynamic.is_some() {
+                    return Err(bad("the stored velocities do not fit the stage in progress"));
+                }
+                let rates = match rates {
+                    Some((v, a)) => Some(Rates {
+                        velocity: sized("velocity", v, 3 * nn)?,
+                        acceleration: sized("acceleration", a, 3 * nn)?,
+                        ground: [0.0; 3],
+                    }),
+                    None => None,
+                };
                 Some(StageProgress {
-                    path: StepControl::resumed(path[0], path[1], path[2] as u32, 1.0, stage.load_steps),
+                    rates,
+                    path: StepControl::resumed(
+                        path[0],
+                        path[1],
+                        path[2] as u32,
+                        stage.t_end(),
+                        stage.load_steps,
+                    ),
                     u_stage_start: sized("u_stage_start", start, 3 * nn)?,
                     node_was_active: was.iter().map(|&f| f != 0).collect(),
                 })

@@ -36,6 +36,8 @@ pub mod integrator;
 #[cfg(feature = "native")]
 pub mod loads;
 #[cfg(feature = "native")]
+mod mass;
+#[cfg(feature = "native")]
 pub mod model;
 #[cfg(feature = "native")]
 pub mod newton;
@@ -59,7 +61,7 @@ pub use model::mesh_cells;
 #[cfg(feature = "native")]
 pub use problem::Problem;
 #[cfg(feature = "native")]
-pub use report::{InterfaceCounts, LocalResults, SolveReport};
+pub use report::{InterfaceCounts, LocalResults, NodeMotion, SolveReport};
 #[cfg(feature = "native")]
 pub use state::{ProblemState, StageProgress};
 #[cfg(feature = "native")]

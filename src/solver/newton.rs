@@ -11,7 +11,7 @@
 //! and zeroing the fixed columns of J is exact. Every evaluation integrates the materials from
 //! the committed states with the step increment x − u_committed (spec models §8.1); only the
 //! Jacobian assembles K (the line search's residual evaluations do not pay for tangents). The
-//! convergence test is on ‖F‖ / max(‖f_ext‖, ‖f_int‖) with exact, order-independent sums, so
+//! convergence test is on ‖F‖ / max(‖f_ext‖, ‖f_int‖, ‖g‖) with exact, order-independent sums, so
 //! every decision is the same at any rank count; the states are committed only on convergence.
 
 use super::error::SolveError;
@@ -84,7 +84,7 @@ struct NewtonStep<'s, 'a> {
     integrator: &'s dyn TimeIntegrator,
     target: StepTarget,
     f_int: Vector,
-    /// max(‖f_ext‖, ‖f_int‖) of the last residual evaluation.
+    /// max(‖f_ext‖, ‖f_int‖, ‖g‖) of the last residual evaluation.
     ref_norm: f64,
     /// ‖F‖ of the last residual evaluation (exact sum: the same at any rank count).
     residual_norm: f64,
@@ -190,7 +190,10 @@ impl NewtonStep<'_, '_> {
         }
         f.copy_from(&self.f_int)?;
         f.axpy(-1.0, &self.target.f_ext)?;
-        self.integrator.add_inertia(x, f)?;
+        let inertia = self.integrator.inertia(x)?;
+        if let Some(g) = &inertia {
+            f.axpy(1.0, g)?;
+        }
         let d = self.model.dirichlet_diag;
         let xs: Vec<f64> = x.read(|s| s.to_vec())?;
         f.write(|s| {
@@ -200,7 +203,14 @@ impl NewtonStep<'_, '_> {
         })?;
         let comm = self.model.comm;
         let norm = |v: &Vector| v.read(|s| exact_norm2(comm, s));
-        self.ref_norm = norm(&self.target.f_ext)?.max(norm(&self.f_int)?).max(1e-300);
+        let g_norm = match &inertia {
+            Some(g) => norm(g)?,
+            None => 0.0,
+        };
+        self.ref_norm = norm(&self.target.f_ext)?
+            .max(norm(&self.f_int)?)
+            .max(g_norm)
+            .max(1e-300);
         self.residual_norm = norm(f)?;
         self.residual_at = Some(xs);
         Ok(true)

@@ -62,4 +62,16 @@ pub struct LocalResults {
     /// Mean local jump (δ_s, δ_a, δ_n) of each owned interface element since its placement (m;
     /// zero for solid elements), spec (E4), (E9).
     pub jump: Vec<[f64; 3]>,
+    /// In a dynamic stage: velocity relative to the base (m/s) and absolute acceleration
+    /// (relative plus ground, m/s²) of each owned node; `None` in a static stage.
+    pub motion: Option<NodeMotion>,
+}
+
+/// Velocities and accelerations of the owned nodes in a dynamic stage.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct NodeMotion {
+    /// Velocity relative to the base (m/s).
+    pub velocity: Vec<[f64; 3]>,
+    /// Absolute acceleration, relative plus ground (m/s²).
+    pub acceleration: Vec<[f64; 3]>,
 }

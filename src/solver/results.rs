@@ -5,7 +5,7 @@ use super::error::SolveError;
 use super::loads::add_placement_force;
 use super::model::BlockStates;
 use super::problem::Problem;
-use super::report::LocalResults;
+use super::report::{LocalResults, NodeMotion};
 use super::solid::Vector24;
 use crate::element::hex8::Hex8Geometry;
 use crate::tensor::{Strain6, Stress6};
@@ -15,6 +15,14 @@ impl Problem<'_> {
     /// Collective.
     pub fn results(&mut self) -> Result<LocalResults, SolveError> {
         let mut out = self.node_results()?;
+        out.motion = self.integrator.rates()?.map(|r| NodeMotion {
+            velocity: r.velocity.chunks(3).map(|c| [c[0], c[1], c[2]]).collect(),
+            acceleration: r
+                .acceleration
+                .chunks(3)
+                .map(|c| std::array::from_fn(|k| c[k] + r.ground[k]))
+                .collect(),
+        });
         let u_loc = self.model.local_u()?;
         let model = &self.model;
         out.elements = model.disc.owned_elements.clone();

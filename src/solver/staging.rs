@@ -2,6 +2,8 @@
 //! checkpoint saves and restores between (or within) stages.
 
 use super::error::SolveError;
+use super::integrator::newmark::GroundMotion;
+use super::integrator::{Newmark, NewmarkParameters, QuasiStatic, Rayleigh, TimeIntegrator};
 use super::problem::Problem;
 use super::solid::Vector24;
 use super::state::{ProblemState, StageProgress};
@@ -19,7 +21,34 @@ impl Problem<'_> {
         }
         self.model.place(&self.scene.stages[k].activate)?;
         self.u_stage_start = self.model.u.read(|s| s.to_vec())?;
+        self.integrator = self.integrator_for_stage()?;
         self.fix_for_stage()
+    }
+
+    /// The time integrator of the current stage: quasi-static, or Newmark at rest at the
+    /// committed state with the mass (and K₀ for Rayleigh damping) built now, only for a
+    /// dynamic stage. Collective.
+    fn integrator_for_stage(&mut self) -> Result<Box<dyn TimeIntegrator>, SolveError> {
+        let scene = self.scene;
+        let Some(d) = &scene.stages[self.stage].dynamic else {
+            return Ok(Box::new(QuasiStatic));
+        };
+        let mass = self.model.assemble_mass(d.lumped)?;
+        let damping = d.damping.map_or(Rayleigh::default(), |r| {
+            Rayleigh::from_frequencies(r.ratio, r.frequencies[0], r.frequencies[1])
+        });
+        let k0 = match damping.stiffness != 0.0 {
+            true => Some(self.model.initial_stiffness()?),
+            false => None,
+        };
+        let params = NewmarkParameters {
+            beta: d.newmark.beta,
+            gamma: d.newmark.gamma,
+        };
+        let stage = d.clone();
+        let ground: GroundMotion = Box::new(move |t| stage.ground_acceleration(t));
+        let newmark = Newmark::new(params, damping, mass, k0, ground, &self.model.u_committed)?;
+        Ok(Box::new(newmark))
     }
 
     /// Continues the stage in progress of a step checkpoint, once the problem's state is
@@ -29,6 +58,10 @@ impl Problem<'_> {
     pub fn resume_stage(&mut self, progress: &StageProgress) -> Result<(), SolveError> {
         self.node_was_active.clone_from(&progress.node_was_active);
         self.u_stage_start.clone_from(&progress.u_stage_start);
+        self.integrator = self.integrator_for_stage()?;
+        if let Some(rates) = &progress.rates {
+            self.integrator.restore_rates(&self.model.u_committed, rates)?;
+        }
         self.fix_for_stage()
     }
 
@@ -76,10 +109,15 @@ impl Problem<'_> {
     /// the stage from `path`.
     pub fn save_state(&self, within: Option<StepControl>) -> Result<ProblemState, SolveError> {
         let model = &self.model;
+        let rates = match within {
+            Some(_) => self.integrator.rates()?,
+            None => None,
+        };
         let in_stage = within.map(|path| StageProgress {
             path,
             u_stage_start: self.u_stage_start.clone(),
             node_was_active: self.node_was_active.clone(),
+            rates,
         });
         Ok(ProblemState {
             stages_done: if within.is_some() {
@@ -162,7 +200,11 @@ impl Problem<'_> {
             return Err(format!("{what}: {got} values, this problem has {want}"));
         }
         if let Some(p) = &state.in_stage {
-            if p.u_stage_start.len() != 3 * nn || p.node_was_active.len() != nn {
+            let rates_fit = p
+                .rates
+                .as_ref()
+                .is_none_or(|r| r.velocity.len() == 3 * nn && r.acceleration.len() == 3 * nn);
+            if p.u_stage_start.len() != 3 * nn || p.node_was_active.len() != nn || !rates_fit {
                 return Err("the stage's start values do not fit this problem".into());
             }
         }

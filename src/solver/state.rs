@@ -1,6 +1,7 @@
 //! The state of a problem that a checkpoint carries, in this rank's owned order; the I/O is
 //! in `crate::io::checkpoint`.
 
+use super::integrator::Rates;
 use super::step_control::StepControl;
 
 /// A stage in progress in a step checkpoint: its step control and what
@@ -13,6 +14,8 @@ pub struct StageProgress {
     pub u_stage_start: Vec<f64>,
     /// Per owned node: whether it was placed before the stage.
     pub node_was_active: Vec<bool>,
+    /// Velocity and acceleration of a dynamic stage (`None` in a static stage).
+    pub rates: Option<Rates>,
 }
 
 /// The state of the problem on one rank at the end of a stage or step, in this rank's owned
