@@ -165,6 +165,32 @@
 //!   costs substeps, so it is off by default and meant for small load steps on fine meshes; a
 //!   step that fails within a decade of such a STOL says so in its report and names the remedy.
 //!
+//! ## Dynamic stages and earthquakes
+//!
+//! A stage with a `dynamic:` key is integrated in time under a ground-acceleration record on a
+//! rigid base (spec seismic §3): Newmark's method (average acceleration, β = 1/4, γ = 1/2, by
+//! default), Newton at every step with the same cut-backs, from the state the stages before
+//! left (u₀ = the static displacement, v₀ = a₀ = 0); gravity and water stay applied. Mass
+//! (consistent, or `mass: lumped`) and the stiffness K₀ of Rayleigh damping are built only for
+//! such a stage. A generated dam takes its quake as a top-level `earthquake:` appended after the
+//! schedule with the last stage's loads:
+//!
+//! ```yaml
+//! earthquake:
+//!   record: ../accel/seed_quake.csv   # t,a_x,a_y,a_z in m/s², our axes (cfrd accel writes it)
+//!   duration: 20.0                    # s (default: the record's length)
+//!   dt: 0.01                          # s (default: the record's sample interval)
+//!   damping: { ratio: 0.05, frequencies: [1.0, 5.0] }   # C = a_M·M + a_K·K₀ (optional)
+//!   output_every: 10                  # fields every 10 steps (default: the stage's end only)
+//! ```
+//!
+//! Displacements of a dynamic stage are relative to the base; its results also hold the
+//! `velocity` (relative) and the absolute `acceleration` (relative plus ground) of every node.
+//! A results step inside stage k (1-based) at time t of its duration D has the step time
+//! k − 1 + t/D and a label with t in seconds. `cfrd accel SPEC.yaml -o DIR` generates
+//! spectrum-compatible records from the hydraulic code's design spectrum
+//! ([`crate::seismic`], `inputs/accel/seed_quake.yaml`).
+//!
 //! ## Linear solvers and PETSc options
 //!
 //! * `linear_solver: iterative` (default): CG with GAMG and the rigid-body near-null space for

@@ -612,6 +612,14 @@ pub fn write_profiles_from_results(
                     .map_err(|e| format!("{}: /steps/{name}/{field}: {e}", h5.display()))
             };
             let stage = stage_name(&g).unwrap_or_else(|| name.clone());
+            // Figs. 7-11 are the static states: a dynamic stage's steps are not theirs
+            let dynamic = scene
+                .stages
+                .iter()
+                .any(|s| s.name == stage && s.dynamic.is_some());
+            if dynamic {
+                continue;
+            }
             stages.retain(|s| s.name != stage);
             stages.push(crate::profiles::StageFields {
                 name: stage,

@@ -200,3 +200,27 @@ fn shear_column_free_vibration_period_and_rayleigh_decay() {
         "damping ratio from the decay {zeta:.4}, want 0.05"
     );
 }
+
+/// The committed seed record is what `cfrd accel` makes of the committed spec, byte for byte
+/// (the seed quake scenes read it; a change of the generator must regenerate it).
+#[test]
+fn the_committed_seed_record_is_reproduced_by_cfrd_accel() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let dir = tempdir();
+    let o = common::cfrd(
+        root,
+        &[
+            "accel",
+            "inputs/accel/seed_quake.yaml",
+            "-o",
+            dir.path().to_str().unwrap(),
+        ],
+    );
+    assert!(o.status.success(), "cfrd accel failed: {}", text(&o));
+    let made = std::fs::read(dir.path().join("seed_quake.csv")).expect("record written");
+    let committed = std::fs::read(root.join("inputs/accel/seed_quake.csv")).expect("committed record");
+    assert!(
+        made == committed,
+        "inputs/accel/seed_quake.csv differs from a fresh `cfrd accel` run"
+    );
+}

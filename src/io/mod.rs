@@ -40,8 +40,9 @@
 //! /steps/000002 ...
 //! ```
 //!
-//! `time` is the physical time (s) of a dynamic step, or the pseudo-time of a static stage
-//! (the scene's load factor); it increases from step to step, as ParaView expects.
+//! `time` increases from step to step, as ParaView expects: the end of stage k (1-based) is at
+//! time k, and a step written inside a dynamic stage k at its time t of duration D is at
+//! k − 1 + t/D (its `label` gives t in seconds).
 //!
 //! ## Standard fields and sign conventions
 //!
