@@ -45,6 +45,8 @@ pub mod plot;
 pub mod point;
 pub mod profiles;
 #[cfg(feature = "native")]
+pub mod quake;
+#[cfg(feature = "native")]
 pub mod run;
 pub mod scene;
 pub mod seismic;

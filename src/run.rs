@@ -381,6 +381,7 @@ pub fn run_scene(
         code: EXIT_SOLVER,
         message: format!("writing results: {m}"),
     })?;
+    write_quake(world, scene, &h5, &out_dir, failure.as_deref())?;
     // the profiles need at least one completed stage; a failure to write them never hides the
     // failure of a stage
     match &scene.file.output.profiles {
@@ -492,6 +493,33 @@ fn write_checkpoint(
         message: format!("writing the checkpoint {}: {m}", ckpt.display()),
     })?;
     Ok(t0.elapsed().as_secs_f64())
+}
+
+/// Writes the crest history and summary of a dynamic stage ([`crate::quake`]) from the closed
+/// results file (rank 0; collective decision). A failure to write them never hides the failure
+/// of a stage (`failure`).
+fn write_quake(
+    world: &SimpleCommunicator,
+    scene: &Scene,
+    h5: &Path,
+    out_dir: &Path,
+    failure: Option<&str>,
+) -> Result<(), RunFailure> {
+    if scene.stages.iter().all(|s| s.dynamic.is_none()) {
+        return Ok(());
+    }
+    let written = if world.rank() == 0 {
+        crate::quake::write_quake_outputs(scene, h5, out_dir)
+    } else {
+        Ok(Vec::new())
+    };
+    any_error(world, written).map(|_| ()).map_err(|m| RunFailure {
+        code: EXIT_SOLVER,
+        message: match failure {
+            Some(f) => format!("{f}; writing the earthquake outputs: {m}"),
+            None => format!("writing the earthquake outputs: {m}"),
+        },
+    })
 }
 
 /// Where a stage stands, for progress lines: "λ = 0.375" or "t = 3.20 s".
