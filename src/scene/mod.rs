@@ -6,10 +6,13 @@
 //! [`Term`]s. The solver iterates over the terms; nothing the scene does not ask for is built.
 
 pub mod error;
+pub mod ranges;
+pub mod restraint;
 pub mod schema;
 pub mod term;
 #[cfg(test)]
 mod tests;
+pub mod text;
 pub mod validate;
 
 pub use error::SceneError;
