@@ -8,7 +8,7 @@
 //! Gram matrix of those rows must be regular (smallest eigenvalue above 1e-9 of the largest).
 
 use super::validate::Stage;
-use crate::mesh::Mesh;
+use crate::mesh::{Element, Mesh};
 use nalgebra::{DMatrix, Matrix6, SymmetricEigen, Vector3, Vector6};
 use std::collections::HashMap;
 
@@ -17,96 +17,114 @@ const RANK_TOL: f64 = 1e-9;
 
 /// Checks every stage of `stages` (blocks placed cumulatively) against the fixed DOFs `fixed`
 /// (node index, component, value; sorted by node). The error says which stage, which body (an
-/// element id and its block) and which motions are free. Each body's Gram matrix is kept and
-/// merged as stages join bodies, so the cost is linear in the elements and fixed DOFs.
+/// element id and its block) and which motions are free. Only the bodies a stage places or
+/// joins are tested again, so the cost is linear in the elements and fixed DOFs.
 pub fn check_restraint(mesh: &Mesh, stages: &[Stage], fixed: &[(u32, u8, f64)]) -> Result<(), String> {
-    let frame = Frame::of(mesh);
     let mut elements_of_block = vec![Vec::new(); mesh.blocks.len()];
     for (e, el) in mesh.elements.iter().enumerate() {
         elements_of_block[el.block as usize].push(e);
     }
-    let mut bodies = UnionFind::new(mesh.num_nodes());
-    let mut placed = vec![false; mesh.num_nodes()];
-    let mut gram: HashMap<u32, Matrix6<f64>> = HashMap::new();
+    let mut bodies = Bodies::new(mesh, fixed);
     for (k, stage) in stages.iter().enumerate() {
         let elements: Vec<usize> = stage
             .activate
             .iter()
             .flat_map(|&b| elements_of_block[b as usize].iter().copied())
             .collect();
-        // bodies of earlier stages that this stage joins, and the nodes it places
-        let mut old_roots = Vec::new();
-        let mut new_nodes = Vec::new();
-        for &e in &elements {
-            for &n in &mesh.elements[e].nodes {
-                if placed[n as usize] {
-                    old_roots.push(bodies.find(n));
-                } else {
-                    placed[n as usize] = true;
-                    new_nodes.push(n);
-                }
-            }
-        }
-        for &e in &elements {
-            let nodes = mesh.elements[e].nodes;
-            for &n in &nodes[1..] {
-                bodies.union(nodes[0], n);
-            }
-        }
-        let mut touched = Vec::new();
-        for old in old_roots {
-            let root = bodies.find(old);
-            if let Some(g) = gram.remove(&old) {
-                *gram.entry(root).or_insert_with(Matrix6::zeros) += g;
-            }
-            touched.push(root);
-        }
-        for n in new_nodes {
-            let root = bodies.find(n);
-            let g = gram.entry(root).or_insert_with(Matrix6::zeros);
-            let first = fixed.partition_point(|f| f.0 < n);
-            for &(_, c, _) in fixed[first..].iter().take_while(|f| f.0 == n) {
-                let row = frame.mode_row(mesh.coords[n as usize], c as usize);
-                *g += row * row.transpose();
-            }
-            touched.push(root);
-        }
-        touched.sort_unstable();
-        touched.dedup();
-        for root in touched {
-            let root = bodies.find(root);
-            let free = free_motions(&gram[&root]);
+        for root in bodies.place(&elements) {
+            let free = free_motions(&bodies.gram[&root]);
             if !free.is_empty() {
-                return Err(message(
-                    mesh,
-                    &mut bodies,
-                    root,
-                    &stage.name,
-                    k,
-                    stages.len(),
-                    &free,
-                ));
+                // every body this stage changed holds one of its elements
+                let el = elements
+                    .iter()
+                    .map(|&e| &mesh.elements[e])
+                    .find(|el| bodies.sets.find(el.nodes[0]) == root)
+                    .expect("a body placed or joined by the stage");
+                return Err(message(mesh, el, &stage.name, k, stages.len(), &free));
             }
         }
     }
     Ok(())
 }
 
-/// The refusal: the stage, the body and its free motions.
-fn message(
-    mesh: &Mesh,
-    bodies: &mut UnionFind,
-    root: u32,
-    stage: &str,
-    k: usize,
-    n_stages: usize,
-    free: &[String],
-) -> String {
-    let el = mesh
-        .elements
-        .iter()
-        .find(|el| bodies.find(el.nodes[0]) == root)
-        .expect("a body has an element");
+/// The bodies of the placed elements (disjoint sets of nodes) and the Gram matrix of the
+/// rigid-body modes on each body's fixed DOFs (kept at the body's root node).
+struct Bodies<'a> {
+    mesh: &'a Mesh,
+    fixed: &'a [(u32, u8, f64)],
+    frame: Frame,
+    sets: UnionFind,
+    placed: Vec<bool>,
+    gram: HashMap<u32, Matrix6<f64>>,
+}
+
+impl<'a> Bodies<'a> {
+    fn new(mesh: &'a Mesh, fixed: &'a [(u32, u8, f64)]) -> Self {
+        Bodies {
+            mesh,
+            fixed,
+            frame: Frame::of(mesh),
+            sets: UnionFind::new(mesh.num_nodes()),
+            placed: vec![false; mesh.num_nodes()],
+            gram: HashMap::new(),
+        }
+    }
+
+    /// Places `elements`: joins their nodes into bodies, merges the Gram matrices of the bodies
+    /// joined and adds the fixed rows of the nodes placed. Returns the roots of the bodies that
+    /// changed.
+    fn place(&mut self, elements: &[usize]) -> Vec<u32> {
+        let mut old_roots = Vec::new();
+        let mut new_nodes = Vec::new();
+        for &e in elements {
+            for &n in &self.mesh.elements[e].nodes {
+                if self.placed[n as usize] {
+                    old_roots.push(self.sets.find(n));
+                } else {
+                    self.placed[n as usize] = true;
+                    new_nodes.push(n);
+                }
+            }
+        }
+        for &e in elements {
+            let nodes = self.mesh.elements[e].nodes;
+            for &n in &nodes[1..] {
+                self.sets.union(nodes[0], n);
+            }
+        }
+        let mut touched = Vec::new();
+        for old in old_roots {
+            let root = self.sets.find(old);
+            if let Some(g) = self.gram.remove(&old) {
+                *self.gram.entry(root).or_insert_with(Matrix6::zeros) += g;
+            }
+            touched.push(root);
+        }
+        for n in new_nodes {
+            let root = self.sets.find(n);
+            let rows = self.fixed_rows(n);
+            *self.gram.entry(root).or_insert_with(Matrix6::zeros) += rows;
+            touched.push(root);
+        }
+        touched.sort_unstable();
+        touched.dedup();
+        touched
+    }
+
+    /// Σ rowᵀ·row over the fixed components of node `n`.
+    fn fixed_rows(&self, n: u32) -> Matrix6<f64> {
+        let first = self.fixed.partition_point(|f| f.0 < n);
+        let mut g = Matrix6::zeros();
+        for &(_, c, _) in self.fixed[first..].iter().take_while(|f| f.0 == n) {
+            let row = self.frame.mode_row(self.mesh.coords[n as usize], c as usize);
+            g += row * row.transpose();
+        }
+        g
+    }
+}
+
+/// The refusal: the stage, the body (by its element `el`) and its free motions.
+fn message(mesh: &Mesh, el: &Element, stage: &str, k: usize, n_stages: usize, free: &[String]) -> String {
     let when = if n_stages > 1 {
         format!("in stage {} '{stage}', ", k + 1)
     } else {

@@ -291,6 +291,13 @@ fn a_stage_is_checked_on_its_placed_elements_only() {
         err.contains("stage 1 'top'") && err.contains("block 'layer_3'"),
         "{err}"
     );
+    // a body not connected to the restrained one is free even with the other held
+    let apart = "stages:\n  - { name: one, activate: [layer_1] }\n  - { name: gap, activate: [layer_3] }\n";
+    let err = message(layered_box(&format!("{FIXED_BASE}{apart}")));
+    assert!(
+        err.contains("stage 2 'gap'") && err.contains("every translation"),
+        "{err}"
+    );
 }
 
 #[test]
