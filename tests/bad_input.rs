@@ -365,7 +365,7 @@ fn a_directory_given_to_restart_exits_2_with_one_line() {
     let msg = text(&o);
     assert_eq!(o.status.code(), Some(2), "{msg}");
     assert!(
-        msg.contains("error: --restart ckpt: not a checkpoint file (a directory)"),
+        msg.contains("error: restart from ckpt: not a checkpoint file (a directory)"),
         "{msg}"
     );
     assert_eq!(msg.lines().count(), 1, "{msg}");

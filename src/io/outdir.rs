@@ -145,9 +145,17 @@ fn temporary_owner(name: &str) -> Option<Option<u32>> {
     })
 }
 
-/// Whether a process with id `pid` exists (Linux `/proc`).
+/// Whether a process with id `pid` runs (Linux `/proc`; a zombie, a killed process not yet
+/// reaped, does not).
 fn process_alive(pid: u32) -> bool {
-    Path::new(&format!("/proc/{pid}")).exists()
+    let Ok(stat) = std::fs::read_to_string(format!("/proc/{pid}/stat")) else {
+        return false;
+    };
+    // "pid (comm) state ...": the name may hold spaces, so the state follows the last ')'
+    let state = stat
+        .rsplit_once(')')
+        .and_then(|(_, rest)| rest.split_whitespace().next());
+    !matches!(state, Some("Z" | "X") | None)
 }
 
 /// Whether `a` and `b` name the same existing file.

@@ -6,7 +6,7 @@ use std::path::Path;
 /// The checkpoint given to `--restart` must be a regular file that can be opened for reading
 /// (a directory, for one, makes MPI-IO print some 60 lines before HDF5 fails).
 pub fn check_restart_file(path: &Path) -> Result<(), String> {
-    let named = |reason: String| format!("--restart {}: {reason}", path.display());
+    let named = |reason: String| format!("restart from {}: {reason}", path.display());
     let meta = std::fs::metadata(path).map_err(|e| named(e.to_string()))?;
     if !meta.is_file() {
         return Err(named(format!(
@@ -28,7 +28,7 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let msg = check_restart_file(dir.path()).expect_err("a directory");
         assert!(
-            msg.starts_with("--restart ") && msg.contains("a directory"),
+            msg.starts_with("restart from ") && msg.contains("a directory"),
             "{msg}"
         );
         let msg = check_restart_file(&dir.path().join("none.h5")).expect_err("missing");
