@@ -6,4 +6,4 @@ bash ci/install-deps.sh
 source ci/env.sh
 cargo build --release --locked
 out=${1:-out/default}
-mpirun -n 2 target/release/cfrd run -o "$out" --overwrite
+mpirun -n 2 target/release/cfrd run -o "$out"
