@@ -4,6 +4,9 @@
 //!
 //! | module | what it holds |
 //! |---|---|
+//! | [`guide`] | user guide (documentation only): scene format, command line, restart, runs in parts, outputs, exit codes, PETSc options |
+//! | [`verification`] | what has been checked (documentation only): solver checks, material points, the seed dam's Figs. 7–11 on three meshes |
+//! | [`performance`] | measured run times, memory, Newton and solver figures, each with its commit and command (documentation only) |
 //! | [`conventions`] | units, axes, signs, Voigt order, frames (read first) |
 //! | [`tensor`] | Voigt stress/strain/tangent newtypes |
 //! | [`material`] | constitutive library: elastic, rockfill GP, interface laws, joints |
@@ -20,6 +23,7 @@
 //! | [`point`] | `cfrd point`: material-point tests from YAML, CSV and PNG output |
 //! | [`plot`] | PNG line plots (figures of point tests and dam outputs) |
 //! | [`profiles`] | the seed's static outputs (Figs. 7–11): slab, interface and dam profiles, probes |
+//! | [`seismic`] | design spectrum, response spectra, artificial accelerograms, record readers, `cfrd accel` |
 //!
 //! The native parallel stack (MPI, PETSc, parallel HDF5, METIS) is behind the default
 //! `native` feature; the constitutive library, the mesh code and the element kernels build
@@ -28,6 +32,7 @@
 pub mod conventions;
 pub mod element;
 pub mod error;
+pub mod guide;
 pub mod input;
 #[cfg(feature = "native")]
 pub mod io;
@@ -37,13 +42,18 @@ pub mod material;
 pub mod mesh;
 #[cfg(feature = "native")]
 pub mod parallel;
+pub mod performance;
 pub mod plot;
 pub mod point;
 pub mod profiles;
 #[cfg(feature = "native")]
+pub mod quake;
+#[cfg(feature = "native")]
 pub mod run;
 pub mod scene;
+pub mod seismic;
 pub mod solver;
 pub mod tensor;
 #[cfg(test)]
 mod test_support;
+pub mod verification;

@@ -3,15 +3,15 @@
 //! Every input error is decided collectively ([`crate::parallel::any_error`]), so all ranks
 //! stop together with exit code 2 and rank 0 prints the message.
 
+use crate::io::checkpoint::{self, CHECKPOINT_FILE};
 use crate::io::hdf5_out::{strain_output_components, OwnedMesh, ResultsFile, StepInfo};
 use crate::io::summary::{Phase, PhaseTimer, RunSummary, StageSeconds};
 use crate::linalg::petsc::Petsc;
 use crate::parallel::{any_error, broadcast_vec, EXIT_INPUT, EXIT_SOLVER};
 use crate::scene::schema::CheckpointMode;
 use crate::scene::Scene;
-use crate::solver::checkpoint::{self, CHECKPOINT_FILE};
 use crate::solver::discretization::Discretization;
-use crate::solver::statics::{mesh_cells, LoadPath, LocalResults, SolveReport, StaticProblem};
+use crate::solver::{mesh_cells, LocalResults, Problem, SolveReport, StepControl};
 use mpi::topology::{Communicator, SimpleCommunicator};
 use partition::{partition_elements_by_band, Partition, PartitionFile};
 use std::path::{Path, PathBuf};
@@ -196,7 +196,7 @@ pub fn run_scene(
         .insert_options(&scene.file.solver.petsc_options)
         .and_then(|_| petsc.insert_options(&opts.petsc_options.join(" ")));
     any_error(world, opt_result).map_err(|m| input(format!("PETSc options: {m}")))?;
-    let setup = StaticProblem::new(&petsc, scene, cells, disc);
+    let setup = Problem::new(&petsc, world, scene, cells, disc);
     let mut problem = any_error(world, setup).map_err(|m| input(format!("setting up the solver: {m}")))?;
     timer.stop();
 
@@ -216,7 +216,7 @@ pub fn run_scene(
                 path.display(),
                 first_stage + 1,
                 scene.stages[first_stage].name,
-                p.lambda
+                p.t
             ),
             None => format!(
                 "restarted from {} after stage {first_stage} '{}'",
@@ -292,30 +292,39 @@ pub fn run_scene(
                     failure = Some(m);
                     break;
                 }
-                LoadPath::new(stage.load_steps)
+                StepControl::new(stage.t_end(), stage.load_steps)
             }
         };
+        let mut steps_in_stage = 0u32;
         let bar = progress_bar(rank == 0 && opts.verbose, stage.load_steps as u64);
         let mut solved = Ok(());
         while solved.is_ok() && !path.done() {
-            solved = problem.advance(&mut path, stage.load_steps, sopts.max_cutbacks, &mut report);
+            solved = problem.advance(&mut path, sopts.max_cutbacks, &mut report);
             if solved.is_err() {
                 break;
             }
-            let lambda = path.lambda;
+            steps_in_stage += 1;
+            let at = stage_time(stage, path.t);
             if step_lines {
                 eprintln!(
-                    "  λ = {lambda:.3} after {:.0} s ({} Newton iterations, {} cut-backs in the run so far)",
+                    "  {at} after {:.0} s ({} Newton iterations, {} cut-backs in the run so far)",
                     stage_start.elapsed().as_secs_f64(),
                     report.newton_iterations,
                     report.cutbacks
                 );
             }
-            bar.set_position((lambda * stage.load_steps as f64).round() as u64);
+            bar.set_position((path.t / path.t_end * stage.load_steps as f64).round() as u64);
             bar.set_message(format!(
-                "λ = {lambda:.3}, Newton {}, cut-backs {}",
+                "{at}, Newton {}, cut-backs {}",
                 report.newton_iterations, report.cutbacks
             ));
+            let every = stage.dynamic.as_ref().map_or(0, |d| d.output_every);
+            if every > 0 && steps_in_stage.is_multiple_of(every) && !path.done() {
+                timer.start(Phase::Output);
+                let info = step_info(k, stage, path.t, path.t_end);
+                write_results(world, &mut problem, &mut file, info, has_interfaces)?;
+                timer.stop();
+            }
             if step_checkpoints && !path.done() {
                 timer.start(Phase::Output);
                 ckpt_seconds += write_checkpoint(world, &ckpt, scene, &problem, &report, Some(path))?;
@@ -330,13 +339,8 @@ pub fn run_scene(
             break;
         }
         timer.start(Phase::Output);
-        let written = problem.results().map_err(|e| e.to_string()).and_then(|res| {
-            write_step(&mut file, k, &stage.name, &res, has_interfaces).map_err(|e| e.to_string())
-        });
-        any_error(world, written).map_err(|m| RunFailure {
-            code: EXIT_SOLVER,
-            message: format!("writing results: {m}"),
-        })?;
+        let info = step_info(k, stage, path.t_end, path.t_end);
+        write_results(world, &mut problem, &mut file, info, has_interfaces)?;
         stages_written += 1;
         report.stage_seconds.push(StageSeconds {
             stage: stage.name.clone(),
@@ -377,6 +381,7 @@ pub fn run_scene(
         code: EXIT_SOLVER,
         message: format!("writing results: {m}"),
     })?;
+    write_quake(world, scene, &h5, &out_dir, failure.as_deref())?;
     // the profiles need at least one completed stage; a failure to write them never hides the
     // failure of a stage
     match &scene.file.output.profiles {
@@ -477,9 +482,9 @@ fn write_checkpoint(
     world: &SimpleCommunicator,
     ckpt: &Path,
     scene: &Scene,
-    problem: &StaticProblem,
+    problem: &Problem,
     report: &SolveReport,
-    within: Option<LoadPath>,
+    within: Option<StepControl>,
 ) -> Result<f64, RunFailure> {
     let t0 = Instant::now();
     let written = checkpoint::write(world, ckpt, scene, problem, report, within);
@@ -490,24 +495,96 @@ fn write_checkpoint(
     Ok(t0.elapsed().as_secs_f64())
 }
 
-/// Writes the fields of the converged state after stage `k` as one step (collective; input
-/// order, any rank count). The step time is the stage number, so ParaView shows the stages in
-/// order.
+/// Writes the crest history and summary of a dynamic stage ([`crate::quake`]) from the closed
+/// results file (rank 0; collective decision). A failure to write them never hides the failure
+/// of a stage (`failure`).
+fn write_quake(
+    world: &SimpleCommunicator,
+    scene: &Scene,
+    h5: &Path,
+    out_dir: &Path,
+    failure: Option<&str>,
+) -> Result<(), RunFailure> {
+    if scene.stages.iter().all(|s| s.dynamic.is_none()) {
+        return Ok(());
+    }
+    let written = if world.rank() == 0 {
+        crate::quake::write_quake_outputs(scene, h5, out_dir)
+    } else {
+        Ok(Vec::new())
+    };
+    any_error(world, written).map(|_| ()).map_err(|m| RunFailure {
+        code: EXIT_SOLVER,
+        message: match failure {
+            Some(f) => format!("{f}; writing the earthquake outputs: {m}"),
+            None => format!("writing the earthquake outputs: {m}"),
+        },
+    })
+}
+
+/// Where a stage stands, for progress lines: "λ = 0.375" or "t = 3.20 s".
+fn stage_time(stage: &crate::scene::Stage, t: f64) -> String {
+    match stage.dynamic {
+        Some(_) => format!("t = {t:.2} s"),
+        None => format!("λ = {t:.3}"),
+    }
+}
+
+/// The results step of stage `k` (index) at its time `t` of `t_end`: the step time is
+/// k + t/t_end, so the stages follow each other in order in ParaView and a stage's end is at
+/// its number.
+fn step_info(k: usize, stage: &crate::scene::Stage, t: f64, t_end: f64) -> StepInfo {
+    let label = if t >= t_end {
+        format!("end of stage {}", k + 1)
+    } else {
+        format!("stage {} at {}", k + 1, stage_time(stage, t))
+    };
+    StepInfo {
+        time: if t >= t_end {
+            (k + 1) as f64
+        } else {
+            k as f64 + t / t_end
+        },
+        stage: stage.name.clone(),
+        label,
+    }
+}
+
+/// Collects the results of the committed state and writes them as the step `info`
+/// (collective).
+fn write_results(
+    world: &SimpleCommunicator,
+    problem: &mut Problem,
+    file: &mut ResultsFile,
+    info: StepInfo,
+    has_interfaces: bool,
+) -> Result<(), RunFailure> {
+    let written = problem
+        .results()
+        .map_err(|e| e.to_string())
+        .and_then(|res| write_step(file, info, &res, has_interfaces).map_err(|e| e.to_string()));
+    any_error(world, written).map_err(|m| RunFailure {
+        code: EXIT_SOLVER,
+        message: format!("writing results: {m}"),
+    })
+}
+
+/// Writes the fields of a converged state as one step (collective; input order, any rank
+/// count).
 fn write_step(
     file: &mut ResultsFile,
-    k: usize,
-    stage: &str,
+    info: StepInfo,
     res: &LocalResults,
     has_interfaces: bool,
 ) -> Result<(), crate::io::IoError> {
-    file.begin_step(StepInfo {
-        time: (k + 1) as f64,
-        stage: stage.into(),
-        label: format!("end of stage {}", k + 1),
-    })?;
+    file.begin_step(info)?;
     let flat3 = |v: &[[f64; 3]]| v.iter().flatten().copied().collect::<Vec<f64>>();
     file.write_node_field("displacement", "m", 3, &flat3(&res.displacement))?;
     file.write_node_field("reaction", "N", 3, &flat3(&res.reaction))?;
+    if let Some(m) = &res.motion {
+        file.write_node_field("velocity", "m/s", 3, &flat3(&m.velocity))?;
+        file.write_node_field("acceleration", "m/s^2", 3, &flat3(&m.acceleration))?;
+    }
     let stress: Vec<f64> = res.stress.iter().flat_map(|s| s.0.iter().copied()).collect();
     file.write_element_field("stress", "Pa", 6, &stress)?;
     let strain: Vec<f64> = res.strain.iter().flat_map(strain_output_components).collect();
@@ -563,6 +640,14 @@ pub fn write_profiles_from_results(
                     .map_err(|e| format!("{}: /steps/{name}/{field}: {e}", h5.display()))
             };
             let stage = stage_name(&g).unwrap_or_else(|| name.clone());
+            // Figs. 7-11 are the static states: a dynamic stage's steps are not theirs
+            let dynamic = scene
+                .stages
+                .iter()
+                .any(|s| s.name == stage && s.dynamic.is_some());
+            if dynamic {
+                continue;
+            }
             stages.retain(|s| s.name != stage);
             stages.push(crate::profiles::StageFields {
                 name: stage,

@@ -17,7 +17,7 @@ use cfrd::element::shape::hex8_shape;
 use cfrd::linalg::petsc::Petsc;
 use cfrd::scene::Scene;
 use cfrd::solver::discretization::Discretization;
-use cfrd::solver::statics::{mesh_cells, LocalResults, SolveReport, StaticProblem};
+use cfrd::solver::{mesh_cells, LocalResults, Problem, SolveReport};
 use partition::Partition;
 use std::path::Path;
 
@@ -26,10 +26,11 @@ fn solve(petsc: &Petsc, scene: &Scene) -> LocalResults {
     let n = scene.mesh.num_nodes();
     let part = Partition::new(&cells, n, 1, vec![0; cells.len()]);
     let disc = Discretization::new(&cells, n, part, 0);
-    let mut problem = StaticProblem::new(petsc, scene, cells, disc).expect("setup");
+    let world = mpi::topology::SimpleCommunicator::world();
+    let mut problem = Problem::new(petsc, &world, scene, cells, disc).expect("setup");
     let mut report = SolveReport::default();
     problem.begin_stage(0).expect("stage");
-    problem.solve_step(1.0, &mut report).expect("solve");
+    problem.solve_step(0.0, 1.0, &mut report).expect("solve");
     problem.results().expect("results")
 }
 

@@ -42,8 +42,9 @@
 //! /steps/000002 ...
 //! ```
 //!
-//! `time` is the physical time (s) of a dynamic step, or the pseudo-time of a static stage
-//! (the scene's load factor); it increases from step to step, as ParaView expects.
+//! `time` increases from step to step, as ParaView expects: the end of stage k (1-based) is at
+//! time k, and a step written inside a dynamic stage k at its time t of duration D is at
+//! k − 1 + t/D (its `label` gives t in seconds).
 //!
 //! ## Standard fields and sign conventions
 //!
@@ -71,7 +72,7 @@
 //! [`ResultsFile::write_group_attrs`] its metadata; [`ResultsReader::read_owned`] gives each
 //! rank back the rows it owns under a possibly different rank count. The static solver's
 //! checkpoint (`checkpoint.h5`, a `/checkpoint` group with one row per node or element) is
-//! described in `crate::solver::checkpoint`.
+//! described in [`checkpoint`].
 //!
 //! # Use from the solver
 //!
@@ -100,6 +101,7 @@
 //! * The file is written under a temporary name (`.results.h5.partial-<pid>`) and renamed into
 //!   place by [`ResultsFile::close`]; a writer dropped without closing removes it.
 
+pub mod checkpoint;
 pub mod compare;
 pub mod error;
 pub mod hdf5_out;

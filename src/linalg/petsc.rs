@@ -408,6 +408,18 @@ impl Matrix {
     pub fn mult(&self, x: &Vector, y: &mut Vector) -> Result<(), PetscError> {
         call!(MatMult(self.raw, x.raw, y.raw))
     }
+
+    /// A copy of this matrix, pattern and values.
+    pub fn duplicate(&self) -> Result<Matrix, PetscError> {
+        let mut raw: p::Mat = null_mut();
+        call!(MatDuplicate(self.raw, p::MAT_COPY_VALUES, &mut raw))?;
+        Ok(Matrix { raw })
+    }
+
+    /// `self ← self + a X` for a matrix `x` of the same nonzero pattern.
+    pub fn axpy(&mut self, a: f64, x: &Matrix) -> Result<(), PetscError> {
+        call!(MatAXPY(self.raw, a, x.raw, p::SAME_NONZERO_PATTERN))
+    }
 }
 
 impl Drop for Matrix {

@@ -5,6 +5,7 @@
 //! scene into typed objects: the materials of each block and the list of physics
 //! [`Term`]s. The solver iterates over the terms; nothing the scene does not ask for is built.
 
+pub mod dynamic;
 pub mod error;
 pub mod ranges;
 pub mod restraint;

@@ -1,5 +1,6 @@
 //! Loading, validating and resolving a scene.
 
+use super::dynamic;
 use super::error::SceneError;
 use super::schema::{BlockSpec, HydrostaticSpec, LoadsSpec, MeshSource, SceneFile, SolverSpec, StageSpec};
 use super::term::Term;
@@ -84,6 +85,7 @@ impl Scene {
                 file.stages = schedule_stages(&schedule, &file.mesh);
             }
         }
+        append_earthquake(&mut file, &inv)?;
 
         // blocks <-> mesh blocks <-> materials
         let mut block_materials = Vec::with_capacity(mesh.blocks.len());
@@ -209,6 +211,7 @@ impl Scene {
                 activate: (0..mesh.blocks.len() as u32).collect(),
                 terms: resolve_loads(&file.loads, None, &mesh, "loads", &inv)?,
                 load_steps: file.solver.load_steps,
+                dynamic: None,
             });
         } else {
             let mut placed = vec![None::<usize>; mesh.blocks.len()];
@@ -234,6 +237,14 @@ impl Scene {
                     placed[bi as usize] = Some(k);
                     activate.push(bi);
                 }
+                let dynamic = match &st.dynamic {
+                    Some(d) => Some(dynamic::resolve(d, base, &format!("stages[{k}].dynamic"), &inv)?),
+                    None => None,
+                };
+                let load_steps = match &dynamic {
+                    Some(d) => d.steps,
+                    None => st.load_steps.unwrap_or(file.solver.load_steps),
+                };
                 stages.push(Stage {
                     name: st.name.clone(),
                     activate,
@@ -244,7 +255,8 @@ impl Scene {
                         &format!("stages[{k}].loads"),
                         &inv,
                     )?,
-                    load_steps: st.load_steps.unwrap_or(file.solver.load_steps),
+                    load_steps,
+                    dynamic,
                 });
             }
         }
@@ -353,6 +365,32 @@ fn match_blocks<'a>(
     Ok(out)
 }
 
+/// Appends the scene's `earthquake` as a dynamic stage after the last stage, with that
+/// stage's own loads (the scene-wide loads apply to every stage anyway).
+fn append_earthquake(
+    file: &mut SceneFile,
+    inv: &dyn Fn(&str, String) -> SceneError,
+) -> Result<(), SceneError> {
+    let Some(quake) = file.earthquake.clone() else {
+        return Ok(());
+    };
+    let Some(last) = file.stages.last() else {
+        return Err(inv(
+            "earthquake",
+            "needs stages before it (`stages`, or the schedule of `mesh.cfrd`)".into(),
+        ));
+    };
+    let loads = last.loads.clone();
+    file.stages.push(StageSpec {
+        name: "earthquake".into(),
+        activate: Vec::new(),
+        loads,
+        load_steps: None,
+        dynamic: Some(quake),
+    });
+    Ok(())
+}
+
 /// The stages of a generated schedule as scene stages (impoundment levels become hydrostatic
 /// loads on the slab face set `slab_upstream`).
 fn schedule_stages(schedule: &[CfrdStage], src: &MeshSource) -> Vec<StageSpec> {
@@ -375,6 +413,7 @@ fn schedule_stages(schedule: &[CfrdStage], src: &MeshSource) -> Vec<StageSpec> {
                 ..LoadsSpec::default()
             },
             load_steps: st.load_steps,
+            dynamic: None,
         })
         .collect()
 }
@@ -443,8 +482,18 @@ pub struct Stage {
     pub activate: Vec<u32>,
     /// The physics terms at the end of the stage (besides the internal force, always present).
     pub terms: Vec<Term>,
-    /// Number of equal load steps.
+    /// Number of equal load steps (time steps of a dynamic stage).
     pub load_steps: u32,
+    /// How a dynamic stage is integrated in time; `None` for a static stage.
+    pub dynamic: Option<super::dynamic::DynamicStage>,
+}
+
+impl Stage {
+    /// The end of the stage's time: 1 for a static stage (its time is the load factor), the
+    /// duration (s) of a dynamic one.
+    pub fn t_end(&self) -> f64 {
+        self.dynamic.as_ref().map_or(1.0, |d| d.duration)
+    }
 }
 
 /// The terms of the scene-wide loads plus a stage's own loads; face sets are checked.

@@ -116,7 +116,7 @@ impl SolidBlock {
 
     /// Nodal forces f₀ = ∫ Bᵀσ₀ dV (N) of the placement stress σ₀ of an element. The static
     /// solver adds them to the external force of every placed element, so that a lift is placed
-    /// in equilibrium at σ₀ (see [`crate::solver::statics`]).
+    /// in equilibrium at σ₀ (see `crate::solver::loads`).
     pub fn placement_force(&self, geo: &Hex8Geometry) -> Vector24 {
         geo.internal_force(&[self.placement_stress(); HEX_GAUSS_POINTS])
     }

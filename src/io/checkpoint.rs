@@ -32,15 +32,19 @@
 //!   elem_ref             f64 [n_elements, 24]   displacement of each element's nodes at placement
 //!   state_bytes          u64 [n_elements]       length of each element's encoded states
 //!   states               u8  [n_elements, w]    committed point states of each element
-//!                                               ([`super::state_codec`]), zero-padded to the
+//!                                               ([`crate::solver::state_codec`]), zero-padded to the
 //!                                               longest (w bytes)
 //!   report               u8  [len]              JSON of the load-step, Newton and KSP counters
 //!                                               ([`SolveReport`] without timings and residuals)
 //!   (step checkpoints only, `output.checkpoint: step`:)
-//!   load_path            f64 [3]                λ reached in the stage in progress, the next
+//!   load_path            f64 [3]                time reached in the stage in progress (λ of a
+//!                                               static stage, s of a dynamic one), the next
 //!                                               increment, converged steps since it changed
 //!   u_stage_start        f64 [n_nodes, 3]       displacement at the start of that stage (m)
 //!   node_was_active      i64 [n_nodes]          1 if the node was placed before that stage
+//!   (step checkpoints of a dynamic stage only:)
+//!   velocity             f64 [n_nodes, 3]       velocity relative to the base (m/s)
+//!   acceleration         f64 [n_nodes, 3]       acceleration relative to the base (m/s²)
 //! ```
 //!
 //! A step checkpoint (written after every converged load step that does not end a stage) has
@@ -51,17 +55,18 @@
 //! results differ in the last bits from a run with stage checkpoints only (the factors are
 //! reused over fewer steps).
 //!
-//! Not stored, because [`StaticProblem::begin_stage`] of the next stage recomputes them: the
+//! Not stored, because [`Problem::begin_stage`] of the next stage recomputes them: the
 //! fixed DOFs and their start values, and which nodes were placed before the stage.
 
-use super::discretization::Discretization;
-use super::statics::{LoadPath, SolveReport, StageProgress, StaticProblem};
-use crate::io::error::agree;
-use crate::io::{IoError, Redistribution, ResultsFile, ResultsReader};
+use super::error::agree;
+use super::{IoError, Redistribution, ResultsFile, ResultsReader};
 use crate::mesh::Mesh;
 use crate::parallel::broadcast_vec;
 use crate::scene::validate::fnv1a;
 use crate::scene::Scene;
+use crate::solver::discretization::Discretization;
+use crate::solver::integrator::Rates;
+use crate::solver::{Problem, ProblemState, SolveReport, StageProgress, StepControl};
 use mpi::topology::SimpleCommunicator;
 use mpi::traits::{Communicator, CommunicatorCollectives};
 use std::path::Path;
@@ -71,31 +76,6 @@ pub const CHECKPOINT_VERSION: u64 = 1;
 
 /// File name of the checkpoint in the output directory.
 pub const CHECKPOINT_FILE: &str = "checkpoint.h5";
-
-/// The state of the static problem on one rank at the end of a stage, in this rank's owned
-/// order (nodes of `Discretization::owned_nodes`; elements of `owned_elements` when saved, of
-/// `Discretization::elements`, the evaluated ones, when read back).
-#[derive(Debug, Clone, PartialEq, Default)]
-pub struct ProblemState {
-    /// Number of completed stages (the next stage, or the one in progress, has this index).
-    pub stages_done: usize,
-    /// For a step checkpoint: the stage in progress (index `stages_done`) and its load path.
-    pub in_stage: Option<StageProgress>,
-    /// Whether each block is placed (all blocks).
-    pub active_block: Vec<bool>,
-    /// Whether each node belongs to a placed element (all nodes).
-    pub node_active: Vec<bool>,
-    /// Displacement, 3 values per owned node (m).
-    pub u: Vec<f64>,
-    /// External force of the last stage, 3 values per owned node (N).
-    pub f_prev: Vec<f64>,
-    /// Zero of the reported displacement of each owned node (m).
-    pub node_offset: Vec<[f64; 3]>,
-    /// Displacement of each owned element's nodes at its placement (m).
-    pub elem_ref: Vec<[f64; 24]>,
-    /// Encoded committed point states of each owned element ([`super::state_codec`]).
-    pub element_states: Vec<Vec<u8>>,
-}
 
 /// FNV-1a hash (hex) of the mesh: coordinates (bits), connectivity and block of every element.
 /// A checkpoint is refused for a mesh with another hash.
@@ -145,9 +125,9 @@ pub fn write(
     world: &SimpleCommunicator,
     path: &Path,
     scene: &Scene,
-    problem: &StaticProblem,
+    problem: &Problem,
     report: &SolveReport,
-    within: Option<LoadPath>,
+    within: Option<StepControl>,
 ) -> Result<(), IoError> {
     let saved = problem
         .save_state(within)
@@ -188,8 +168,12 @@ pub fn write(
         file.write_table("/checkpoint/u_stage_start", &node_plan, 3, &p.u_stage_start)?;
         let was = flags(p.node_was_active.iter().copied());
         file.write_table("/checkpoint/node_was_active", &node_plan, 1, &was)?;
-        let path = [p.path.lambda, p.path.d_lambda, f64::from(p.path.streak)];
+        let path = [p.path.t, p.path.dt, f64::from(p.path.streak)];
         write_replicated(&mut file, "/checkpoint/load_path", &path)?;
+        if let Some(r) = &p.rates {
+            file.write_table("/checkpoint/velocity", &node_plan, 3, &r.velocity)?;
+            file.write_table("/checkpoint/acceleration", &node_plan, 3, &r.acceleration)?;
+        }
     }
     // the counters are the same on every rank; rank 0's are stored (timings are per run; the
     // residual history is not needed and may hold a non-finite value, which JSON cannot)
@@ -306,7 +290,14 @@ pub fn read(
         let start = reader.read_owned::<f64>("/checkpoint/u_stage_start", &node_plan)?;
         let was = reader.read_owned::<i64>("/checkpoint/node_was_active", &node_plan)?;
         let (path, _) = reader.read_all::<f64>("/checkpoint/load_path")?;
-        Some((start, was, path))
+        let rates = if reader.shape("/checkpoint/velocity").is_ok() {
+            let v = reader.read_owned::<f64>("/checkpoint/velocity", &node_plan)?;
+            let a = reader.read_owned::<f64>("/checkpoint/acceleration", &node_plan)?;
+            Some((v, a))
+        } else {
+            None
+        };
+        Some((start, was, path, rates))
     } else {
         None
     };
@@ -330,9 +321,10 @@ pub fn read(
             .map_err(|e| bad(&format!("the stored solver counters do not parse ({e})")))?;
         let in_stage = match progress {
             None => None,
-            Some((start, was, path)) => {
+            Some((start, was, path, rates)) => {
+                let stage = &scene.stages[stages_done];
                 let fits = path.len() == 3
-                    && (0.0..1.0).contains(&path[0])
+                    && (0.0..stage.t_end()).contains(&path[0])
                     && path[1] > 0.0
                     && path[2] >= 0.0
                     && path[2].fract() == 0.0
@@ -340,12 +332,26 @@ pub fn read(
                 if !fits {
                     return Err(bad("the stored load path of the stage in progress is not valid"));
                 }
+                if rates.is_some() != stage.dynamic.is_some() {
+                    return Err(bad("the stored velocities do not fit the stage in progress"));
+                }
+                let rates = match rates {
+                    Some((v, a)) => Some(Rates {
+                        velocity: sized("velocity", v, 3 * nn)?,
+                        acceleration: sized("acceleration", a, 3 * nn)?,
+                        ground: [0.0; 3],
+                    }),
+                    None => None,
+                };
                 Some(StageProgress {
-                    path: LoadPath {
-                        lambda: path[0],
-                        d_lambda: path[1],
-                        streak: path[2] as u32,
-                    },
+                    rates,
+                    path: StepControl::resumed(
+                        path[0],
+                        path[1],
+                        path[2] as u32,
+                        stage.t_end(),
+                        stage.load_steps,
+                    ),
                     u_stage_start: sized("u_stage_start", start, 3 * nn)?,
                     node_was_active: was.iter().map(|&f| f != 0).collect(),
                 })
@@ -377,14 +383,14 @@ pub fn read(
 /// Reads a checkpoint and restores `problem` and the counters in `report` from it; returns the
 /// number of completed stages (the index of the stage to run or continue next) and, for a step
 /// checkpoint, the load path to continue that stage from (the problem is then inside the
-/// stage, [`StaticProblem::resume_stage`]). Collective.
+/// stage, [`Problem::resume_stage`]). Collective.
 pub fn restore(
     world: &SimpleCommunicator,
     path: &Path,
     scene: &Scene,
-    problem: &mut StaticProblem,
+    problem: &mut Problem,
     report: &mut SolveReport,
-) -> Result<(usize, Option<LoadPath>), IoError> {
+) -> Result<(usize, Option<StepControl>), IoError> {
     let (state, counters) = read(world, path, scene, problem.discretization())?;
     let restored = problem
         .restore_state(&state)

@@ -1,0 +1,349 @@
+//! # User guide: scenes, the command line, restarts, outputs
+//!
+//! How to describe a dam in a scene file, run it on one machine or a cluster, continue a long
+//! run from its checkpoints, and read what a run writes. The model checks and the comparison
+//! with the seed paper are in [`crate::verification`]; run times, memory and solver
+//! measurements in [`crate::performance`].
+//!
+//! Contents: [the main job](#the-main-job) · [scene files](#scene-files) ·
+//! [materials](#materials) · [interfaces and joints](#interfaces-and-joints) ·
+//! [the CFRD generator and the seed scenes](#the-cfrd-generator-and-the-seed-scenes) ·
+//! [nonlinear runs](#nonlinear-runs) · [linear solvers and PETSc options](#linear-solvers-and-petsc-options) ·
+//! [parallel runs](#parallel-runs-and-rank-count-independence) ·
+//! [command line](#command-line) · [restart and checkpoints](#restart-and-checkpoints) ·
+//! [runs in parts](#runs-in-parts) · [outputs](#outputs) · [exit codes](#exit-codes)
+//!
+//! ## The main job
+//!
+//! ```sh
+//! bash ci/run-default.sh            # install, build, run the coarse seed dam on 2 ranks
+//! bash ci/run-default.sh out/mine   # the same into another directory
+//! SCENE=inputs/scenes/seed_coarse_hyperbolic.yaml RANKS=1 bash ci/run-default.sh
+//! ```
+//!
+//! It installs the Debian packages that are missing (`ci/install-deps.sh`: PETSc, Open MPI,
+//! parallel HDF5, METIS, an optimized serial BLAS), builds `cfrd` in release mode and runs
+//! `inputs/scenes/seed_coarse_gp_interface.yaml` (listed in full [below](#a-seed-scene)) with
+//! `mpirun -n 2` into `out/seed_coarse/`, then lists the files it wrote. Run again, it replaces
+//! that directory (the new run goes into `out/seed_coarse.partial` and is moved into place when
+//! it has finished; a directory it did not write is refused). `cfrd run` without a scene runs
+//! the small embedded default scene (`inputs/scenes/default_dam.yaml`: an elastic dam prism
+//! under self-weight and reservoir, seconds on 2 ranks).
+//!
+//! ## Scene files
+//!
+//! A scene is one YAML file: mesh, materials per block, boundary conditions, loads, stages,
+//! solver and output settings. Units are SI throughout (N, m, kg, s, Pa); axes, signs and the
+//! Voigt order are those of [`crate::conventions`] (x stream upstream → downstream, y dam axis,
+//! z up; tension positive; `[xx, yy, zz, xy, yz, zx]`). Unknown keys are errors, and every error
+//! names its YAML path. `cfrd schema` prints the JSON Schema of the format (for editors); the
+//! types behind it, with every key documented, are [`crate::scene::schema::SceneFile`] and the
+//! types it links to. Only the loads a scene names are built ([`crate::scene`]).
+//!
+//! A small scene:
+//!
+//! ```yaml
+//! name: column
+//! units: SI                        # only SI: N, m, kg, s, Pa
+//! mesh:
+//!   box: { size: [1.0, 1.0, 10.0], divisions: [1, 1, 8] }   # or { file: dam.msh }, { dam: {...} }, { cfrd: {...} }
+//! materials:
+//!   soil: { model: elastic, young: 5.0e7, poisson: 0.3, density: 2000.0 }
+//! blocks:                          # every mesh block (Gmsh physical volume) gets a material
+//!   layer_1: { material: soil }
+//! boundary:
+//!   - { set: zmin, fix: [x, y, z] }
+//!   - { set: xmin, fix: [x] }
+//! loads:                           # each load present is one physics term; nothing else is built
+//!   gravity: { g: [0.0, 0.0, -9.81] }
+//!   hydrostatic: [ { faces: upstream, level: 159.0 } ]
+//! solver: { rtol: 1.0e-10, petsc_options: "-ksp_monitor" }
+//! ```
+//!
+//! | key | what it holds |
+//! |---|---|
+//! | `name` | the scene's name, written into the results |
+//! | `units` | `SI`, the only unit system accepted |
+//! | `mesh` | one of `file` (Gmsh MSH 4.1 or 2.2; physical volumes are blocks, physical surfaces face sets, [`crate::mesh::gmsh`]), `box`, `dam` (a prismatic dam section) or `cfrd` (the [CFRD generator](#the-cfrd-generator-and-the-seed-scenes)) |
+//! | `partition` | a partition file from `cfrd partition`; METIS runs at start-up otherwise |
+//! | `materials` | materials by name, each with `model:` and its parameters ([materials](#materials)) |
+//! | `blocks` | every mesh block with its `material`; interface blocks also take `orientation`, `rule` and `initial_normal_stress`. A key with `*` is a pattern (`fill_*_cushion`) for the blocks without an exact key |
+//! | `boundary` | `{ set, fix: [x, y, z], value }` on node sets (prescribed displacement, zero by default) |
+//! | `loads` | `gravity: { g }`, `pressure: [ { faces, value } ]`, `hydrostatic: [ { faces, level, unit_weight } ]` (γ_w 9810 N/m³ by default) |
+//! | `stages` | construction and loading stages in order: `{ name, activate: [blocks], loads, load_steps }`; placed blocks start strain-free at zero stress. Without stages the scene is one stage (a `mesh.cfrd` scene runs the generator's schedule) |
+//! | `solver` | [`SolverSpec`](crate::scene::schema::SolverSpec): `rtol` (1e-10), `max_iterations` (2000), `newton_tol` (1e-8), `newton_max_iterations` (25), `load_steps` (1), `max_cutbacks` (8), `petsc_options`, `monitor`, `linear_solver` (`iterative` or `canonical_lu`), `reuse_factorization` (true), `integration_tol_ratio` (0, off) |
+//! | `output` | [`OutputSpec`](crate::scene::schema::OutputSpec): `dir` (`out`; `-o` overrides it), `placed_nodes` (`end_of_stage` or `start_of_stage`: where the displacement of a placed node counts from), `profiles` (the seed's Figs. 7–11, [`crate::profiles`]), `checkpoint` (`stage`, `step` or `none`) |
+//!
+//! ### A seed scene
+//!
+//! The scene the main job runs, as generated by `scripts/make_seed_scenes.sh` (edit the script,
+//! not the nine generated files, then rerun it):
+//!
+#![doc = concat!("```yaml\n", include_str!("../inputs/scenes/seed_coarse_gp_interface.yaml"), "```")]
+//!
+//! ## Materials
+//!
+//! Parameters left out take the seed's tables (Liu, Kong & Zou 2015, Tables 1–4); the spec's
+//! inferred choices are named options with the recommended defaults, documented with each
+//! model's parameters.
+//!
+//! | model | `model:` tag | spec | integration | tangent |
+//! |---|---|---|---|---|
+//! | rockfill generalized plasticity (seed Table 1), [`rockfill_gp`](crate::material::rockfill_gp) | `rockfill_gp` | models §1 | explicit modified Euler with error control, STOL 1e-4 (§8.2) | continuum D^ep; `tangent: numerical` (consistent, central differences) optional |
+//! | 3D state-dependent GP interface (seed Table 2, e0 = 0.25), [`interface_gp`](crate::material::interface_gp) | `gp_interface` | models §2 | the same integrator, with reversal mapping, breakage, opening memory | continuum (numerical optional) |
+//! | Clough–Duncan hyperbolic interface (Table 3), [`interface_hyperbolic`](crate::material::interface_hyperbolic) | `hyperbolic` | models §3 | substepped Heun, unload/reload with k_ur (§8.4) | continuum |
+//! | ideal elasto-plastic Mohr–Coulomb interface (Table 4), [`interface_mc`](crate::material::interface_mc) | `mohr_coulomb` | models §4 | closed-form radial return (§8.3) | consistent (incl. ∂k_s/∂σ_n) |
+//! | slab joint (25 GPa/m, 5 MPa/m, 1 MPa/m), [`joint`](crate::material::joint) | `joint` | models §6 | closed form | secant |
+//! | linear elasticity (slab), [`elastic`](crate::material::elastic) | `elastic` | – | closed form | elastic |
+//!
+//! Named options of the inferred choices: `lode`, `hden_on_hu`, `softening_guard`, `xi_rule`
+//! (rockfill); `peak_form`, `fh_mode`, `stiffness_basis`, `elastic_void_ratio`,
+//! `reversal_branch` (GP interface). With the rockfill GP model in a staged dam, give
+//! `tangent: numerical`: the continuum tangent of a large strain step is far from the
+//! consistent one, and Newton then creeps ([`crate::performance`]). `cfrd point` drives one
+//! material point along a laboratory path ([command line](#command-line)).
+//!
+//! ## Interfaces and joints
+//!
+//! A block of zero-thickness elements (models §5: in a Gmsh file, hexahedra whose nodes 5–8 sit
+//! on nodes 1–4, nodes 1–4 on the slab side; the CFRD generator makes them itself) takes an
+//! interface law as its material (`hyperbolic`, `mohr_coulomb`, `gp_interface`, `joint`) and an
+//! orientation from the slab into the dam, e.g.
+//! `contact: { material: mc, orientation: [1.0, 0.0, -1.4] }`. `rule` picks the nodal
+//! Newton–Cotes points (`newton_cotes`, default, spec models §5.4) or `gauss2x2`
+//! ([`crate::element::interface8`]). Results then hold
+//! `interface_traction`, `interface_jump`, `interface_slip` and `interface_opening`, and the
+//! run summary counts the open and slipping points.
+//!
+//! ## The CFRD generator and the seed scenes
+//!
+//! `mesh: { cfrd: {...} }` ([`CfrdSpec`](crate::mesh::cfrd::CfrdSpec); geometry from spec seismic
+//! §5) builds the seed dam: a trapezoidal canyon, the cushion, transition and rockfill zones in
+//! fill layers, the face slab in three stages (stage I cast at fill el. 2780 m, II and III after
+//! the fill) on a slab–cushion interface, vertical and perimetric joints (models §6) against a
+//! rigid plinth, and the stage schedule: fill layers `fill_KKK`, slab stages `slab_S`,
+//! impoundment stages `impound_N` to el. 2840 m. Omitted keys take the seed dam's values.
+//!
+//! `inputs/scenes/seed_{coarse,medium,fine}_{hyperbolic,mohr_coulomb,gp_interface}.yaml` are
+//! the seed dam at three resolutions with each of the three interface models:
+//!
+//! | resolution | `mesh.cfrd` | solver |
+//! |---|---|---|
+//! | coarse | 8 fill layers, 30 m panels, 3 impoundment stages | canonical LU (PETSc's LU) |
+//! | medium | 30 fill layers, 15 m panels, 4 impoundment stages | canonical LU with MUMPS |
+//! | fine | 86 fill layers (as the seed), 2 elements per panel, 6 impoundment stages | canonical LU with MUMPS; run it [in parts](#runs-in-parts) |
+//!
+//! All of them use 8 load steps per stage, `newton_tol: 1.0e-5` (above the noise of the GP
+//! substepping, see [nonlinear runs](#nonlinear-runs)) and at most 15 Newton iterations per
+//! step, and write the seed's Figs. 7–11 (`output.profiles`, probe I-A at el. 2711 m). Their
+//! sizes and run times are in [`crate::performance`].
+//!
+//! ## Nonlinear runs
+//!
+//! Newton's method runs on PETSc SNES with cfrd's residual and Jacobian and the `l2` line
+//! search; every material point is integrated from its last committed state over the total
+//! step increment (spec models §8.1).
+//!
+//! * **Load steps.** `solver.load_steps` splits each stage's load into equal steps (a stage may
+//!   set its own `load_steps`; generated fill layers take `mesh.cfrd.fill_load_steps`). A step
+//!   whose Newton iteration or material update fails is halved, at most `solver.max_cutbacks`
+//!   times in a row, and grown back after two successes; the run summary counts cut-backs and
+//!   Newton iterations per step (`newton_per_step`). With GP rockfill, steps too large cost
+//!   more than they save (measurements in [`crate::performance`]).
+//! * **Watching a run.** `solver: { monitor: true }`, or `cfrd run --monitor` (which leaves the
+//!   scene and its hash alone, so a restarted run can be watched), prints every Newton
+//!   residual and the reason and place (the node of the largest out-of-balance force) of every
+//!   cut-back.
+//! * **The integration noise.** A Newton solve cannot go below the noise of the GP stress
+//!   integration, about the substepping tolerance STOL (`integration.stol`, spec models §8.2,
+//!   default 1e-4) relative to the reference force: when a point's number of substeps changes
+//!   between two Newton iterates its stress jumps by up to that much. Give `newton_tol` above it
+//!   (the seed scenes use 1e-5). When a residual stays put a little above STOL while
+//!   `newton_tol` is smaller, `solver: { integration_tol_ratio: 0.1 }` (or
+//!   `cfrd run --integration-tol-ratio 0.1`, which leaves the hash alone, so a stalled run
+//!   continues from its checkpoint) integrates every GP material at STOL ≤ 0.1·newton_tol. It
+//!   costs substeps, so it is off by default and meant for small load steps on fine meshes; a
+//!   step that fails within a decade of such a STOL says so in its report and names the remedy.
+//!
+//! ## Dynamic stages and earthquakes
+//!
+//! A stage with a `dynamic:` key is integrated in time under a ground-acceleration record on a
+//! rigid base (spec seismic §3): Newmark's method (average acceleration, β = 1/4, γ = 1/2, by
+//! default), Newton at every step with the same cut-backs, from the state the stages before
+//! left (u₀ = the static displacement, v₀ = a₀ = 0); gravity and water stay applied. Mass
+//! (consistent, or `mass: lumped`) and the stiffness K₀ of Rayleigh damping are built only for
+//! such a stage. A generated dam takes its quake as a top-level `earthquake:` appended after the
+//! schedule with the last stage's loads:
+//!
+//! ```yaml
+//! earthquake:
+//!   record: ../accel/seed_quake.csv   # t,a_x,a_y,a_z in m/s², our axes (cfrd accel writes it)
+//!   duration: 20.0                    # s (default: the record's length)
+//!   dt: 0.01                          # s (default: the record's sample interval)
+//!   damping: { ratio: 0.05, frequencies: [1.0, 5.0] }   # C = a_M·M + a_K·K₀ (optional)
+//!   output_every: 10                  # fields every 10 steps (default: the stage's end only)
+//! ```
+//!
+//! Displacements of a dynamic stage are relative to the base; its results also hold the
+//! `velocity` (relative) and the absolute `acceleration` (relative plus ground) of every node.
+//! A results step inside stage k (1-based) at time t of its duration D has the step time
+//! k − 1 + t/D and a label with t in seconds. `cfrd accel SPEC.yaml -o DIR` generates
+//! spectrum-compatible records from the hydraulic code's design spectrum
+//! ([`crate::seismic`], `inputs/accel/seed_quake.yaml`).
+//!
+//! ## Linear solvers and PETSc options
+//!
+//! * `linear_solver: iterative` (default): CG with GAMG and the rigid-body near-null space for
+//!   symmetric tangents, GMRES (right preconditioning) with GAMG levels smoothed by
+//!   Richardson/SOR for non-symmetric ones. Results at different rank counts agree to the
+//!   linear tolerance. It scales further (the solver benchmark goes to a million DOFs), but the
+//!   stiff interfaces and joints of a dam with its slab defeat GAMG ([`crate::performance`]).
+//! * `linear_solver: canonical_lu`: a sequential LU of the coupled part of the system on every
+//!   rank, in the mesh's own DOF order (rows decoupled from the rest, the constrained DOFs and
+//!   the nodes of fill not yet placed, are split off first). Results are then the same bit for
+//!   bit on any number of ranks. It costs a serial factorization on every rank, so it suits
+//!   meshes up to some 10⁵ DOFs (the fine seed mesh, 256,461 DOFs, still runs on it with
+//!   MUMPS, at 10.2 GiB per rank). Within a stage the factors of an earlier Jacobian precondition
+//!   GMRES on the current one and are renewed only when GMRES needs more than a few iterations
+//!   (`reuse_factorization`, default true; `false` factors every Jacobian); the run summary
+//!   counts the factorizations. `-canonical_pc_factor_mat_solver_type mumps` factors with MUMPS
+//!   (faster from the medium mesh up, with the serial OpenBLAS that `ci/install-deps.sh`
+//!   installs).
+//!
+//! PETSc options go into `solver.petsc_options`, or follow the command: every single-dash word
+//! with more than one letter is a PETSc option, taking the next word as its value unless that
+//! is an option or a YAML file, and options on the command line override the scene's:
+//!
+//! ```sh
+//! mpirun -n 8 cfrd run dam.yaml -o out/dam -ksp_type gmres -pc_type hypre
+//! mpirun -n 2 cfrd run dam.yaml -o out/dam -snes_linesearch_type basic -ksp_monitor
+//! ```
+//!
+//! A bad PETSc option exits with code 2.
+//!
+//! ## Parallel runs and rank-count independence
+//!
+//! The mesh is partitioned with METIS across the MPI ranks, each construction band balanced on
+//! its own so that every stage of a staged run keeps all ranks busy (`cfrd partition` does the
+//! same ahead of time). Every rank evaluates its own elements and those along its partition
+//! boundary and adds to its own rows only, so each entry of the residual and of the tangent is
+//! summed over the same elements in the same order at any rank count; every norm behind a
+//! Newton decision (convergence, the line search's merit, the Dirichlet scaling) is an exact,
+//! order-independent sum ([`crate::solver::exact_sum`]). With `canonical_lu` a run, cut-backs,
+//! line searches and plastic states included, is therefore the same bit for bit on any number of
+//! ranks; with the iterative solver it agrees to the solver tolerance. Results go to one
+//! parallel HDF5 file whose layout does not depend on the rank count. A panic on any rank
+//! aborts the whole job (exit code 101), so a parallel job never hangs.
+//!
+//! ## Command line
+//!
+//! Run the parallel subcommands (`run`, `check`, `bench solver`) under `mpirun -n N`.
+//!
+//! | command | what it does |
+//! |---|---|
+//! | `cfrd run [SCENE] [-o DIR] [PETSc options]` | runs a scene (the embedded default scene without one) into `DIR` (the scene's `output.dir` otherwise) |
+//! | `cfrd run ... --restart CHECKPOINT` | continues a run from a checkpoint of the same scene ([restart](#restart-and-checkpoints)) |
+//! | `cfrd run ... --stop-after-stage K\|+N` | ends the run cleanly after stage K of the schedule, or after N stages of this run; results and checkpoint are written and `summary.json` records `stopped_after_stage` |
+//! | `cfrd run ... --checkpoint stage\|step\|none` | overrides `output.checkpoint` without changing the scene (nor its hash) |
+//! | `cfrd run ... --monitor` | prints every Newton residual and cut-back, as `solver.monitor` does, without changing the scene |
+//! | `cfrd run ... --integration-tol-ratio R` | caps the GP substepping tolerance at R·newton_tol, as `solver.integration_tol_ratio` does, without changing the scene |
+//! | `cfrd run ... -q` | prints nothing but errors |
+//! | `cfrd check SCENE` | parses, validates and cross-checks the scene and its mesh without solving; prints the counts of nodes, elements, blocks, fixed DOFs and stages |
+//! | `cfrd schema` | prints the JSON Schema of the scene format |
+//! | `cfrd partition SCENE -n N -o FILE` | METIS partition for N ranks, written to `FILE`; the scene then names it in `partition:` |
+//! | `cfrd compare A B [--tolerance T]` | largest absolute and relative difference of every field of every common step of two results files or run directories (steps matched by stage and time, so a restarted run compares with the uninterrupted one); with `--tolerance`, exit code 1 when a relative difference exceeds T |
+//! | `cfrd overlay LABEL=DIR... -o FIG.png` | the slab profiles (seed Figs. 8, 9) of several runs in one figure, e.g. one per interface model |
+//! | `cfrd profiles SCENE RUN... -o DIR` | the seed Figs. 7–11 of a run from its results, over several parts of a run made in parts, in order |
+//! | `cfrd point TEST.yaml [-o DIR]` | material-point tests (drained triaxial, cyclic triaxial, oedometer, isotropic compression, interface direct shear under constant normal load or stiffness, model comparisons): CSV tables and a PNG figure; `inputs/point/` has an example of each and its `README.md` the format ([`crate::point`]) |
+//! | `cfrd bench solver [--dofs N] [-o DIR]` | static linear-elastic solve of a seed-like dam section of about N DOFs: one table row (`scripts/bench_solver.sh` runs the set) |
+//! | `cfrd bench materials [--quick]` | integration-point updates per second of every constitutive model, one core ([`crate::material::bench`]) |
+//!
+//! ```sh
+//! mpirun -n 2 cfrd run inputs/scenes/seed_coarse_hyperbolic.yaml -o out/hyp
+//! mpirun -n 2 cfrd check inputs/scenes/seed_fine_gp_interface.yaml
+//! cfrd schema > cfrd-scene.schema.json
+//! cfrd partition dam.yaml -n 8 -o dam.part
+//! cfrd compare out/hyp_1rank out/hyp_2ranks --tolerance 1e-6
+//! cfrd overlay hyperbolic=out/hyp gp=out/gp -o slab.png
+//! cfrd point inputs/point/interface_crosscheck.yaml -o out/point
+//! mpirun -n 2 cfrd bench solver --dofs 1000000
+//! ```
+//!
+//! ## Restart and checkpoints
+//!
+//! A staged scene writes `<out>/checkpoint.h5` at the end of every completed stage
+//! (`output: { checkpoint: none }` turns it off). `output: { checkpoint: step }` writes it after
+//! every converged load step as well, for stages longer than a job may run: a restart then
+//! continues inside the stage. `cfrd run --checkpoint stage|step|none` overrides the scene's
+//! choice without changing the scene, whose hash a restart checks, so a run in parts may switch
+//! to step checkpoints for its long stages.
+//!
+//! ```sh
+//! mpirun -n 2 cfrd run dam.yaml -o out/a                                   # killed, or stopped
+//! mpirun -n 2 cfrd run dam.yaml --restart out/a/checkpoint.h5 -o out/b     # continues
+//! cfrd compare out/full out/b                                              # steps matched by stage and time
+//! ```
+//!
+//! * At the same rank count a restarted run gives the results of an uninterrupted run bit for
+//!   bit; at another rank count it agrees to the solver tolerance (bit for bit too with
+//!   `canonical_lu`). A step checkpoint starts a fresh preconditioner after its step, in the
+//!   uninterrupted run too, which is what makes the restart exact; so runs with step and with
+//!   stage checkpoints differ by rounding, which the path-dependent plasticity carries further
+//!   ([`crate::verification`]).
+//! * The checkpoint is written to a temporary file and renamed when complete, so an interrupted
+//!   write never damages the previous one. A checkpoint of another scene or mesh is refused
+//!   (exit 2).
+//! * The restarted `results.h5` holds the stages computed after the restart, so give the
+//!   restart its own `-o`. Its `summary.json` carries the solver counters and the per-stage
+//!   wall times (`stage_seconds`) of the whole run, all parts.
+//! * A staged run publishes its `results.h5` at every stage checkpoint (a complete copy, never a
+//!   half-written file), so a run that is killed keeps the results of the stages it completed
+//!   as well as its checkpoint.
+//!
+//! ## Runs in parts
+//!
+//! For runs longer than a job's time limit (the fine seed mesh runs for hours):
+//!
+//! ```sh
+//! scripts/run_in_parts.sh SCENE OUT [RANKS] [-- cfrd run arguments]     # RANKS defaults to 2
+//! PART_STAGES=10 scripts/run_in_parts.sh inputs/scenes/seed_fine_hyperbolic.yaml out/fine 2
+//! cfrd profiles inputs/scenes/seed_fine_hyperbolic.yaml out/fine/part_1 out/fine/part_2 -o out/fine/profiles
+//! ```
+//!
+//! Each call runs one part, `OUT/part_<k>`: the first starts the scene, every later call
+//! restarts from the newest checkpoint into the next part, and a call after the last stage
+//! says the run has finished. `PART_STAGES=N` ends each part cleanly after N stages
+//! (`--stop-after-stage +N`); without it a part runs until it ends or is killed. Arguments after
+//! `--` go to every part (e.g. `-- --checkpoint step`). `OUT/parts.csv` lists each part's first
+//! and last stage, wall time, peak memory of the largest rank and exit code; `OUT/part_<k>.log`
+//! is its log. `cfrd profiles` draws the seed figures over the parts, so the probe histories
+//! cover all their stages. On a cluster, submit the same call as a job until it reports that
+//! the run has finished, with `BIN` pointing at an installed `cfrd`.
+//!
+//! ## Outputs
+//!
+//! A run writes into its output directory:
+//!
+//! | file | what |
+//! |---|---|
+//! | `results.h5` | one parallel HDF5 file: the mesh and, for every output step (the end of every stage), `displacement`, `reaction`, `strain`, `stress` and the interface fields, every dataset in input order whatever the rank count; layout, units and signs are documented in the crate docs of `cfrd::io` (feature `native`) |
+//! | `results.xdmf` | the XDMF description of `results.h5`: open it in ParaView or VisIt (one time step per output step) |
+//! | `summary.json` | run summary: scene, ranks, nodes, elements, DOFs, wall time per phase and per stage (`stage_seconds`), Newton iterations, steps, cut-backs, `newton_per_step`, factorizations, KSP iterations, interface points open and slipping, peak memory per rank, checkpoint time, `restarted_after_stage` / `stopped_after_stage` |
+//! | `checkpoint.h5` | the last checkpoint (staged scenes) |
+//! | `fig07_dam_displacement`, `fig08_slab_stress`, `fig09_slab_deflection`, `fig10_probe_NAME`, `fig11_interface` (`.csv` and `.png`) | the seed's Figs. 7–11 with `output.profiles`: dam displacement on the crest vertical, slab stresses and deflection at the central section at the end of construction and after impoundment, the stress path of each probe interface element, interface jumps and opening ([`crate::profiles`]) |
+//!
+//! Fig. 8 of the main job (`fig08_slab_stress.png` of the coarse GP-interface scene, as kept
+//! in `scripts/figures/seed_static_gp_interface_fig08_slab_stress.png`):
+//!
+//! ![slab stresses of the coarse seed dam, GP interface][fig08]
+//!
+//! ## Exit codes
+//!
+//! | code | meaning |
+//! |---|---|
+//! | 0 | success (also a run ended by `--stop-after-stage`) |
+//! | 1 | `cfrd compare --tolerance` found a larger difference; MPI could not be initialized |
+//! | 2 | bad input: YAML, mesh, parameters, options, a checkpoint of another scene; the message names the YAML path, file line or element id |
+//! | 3 | solver failure (a load step that still fails after its cut-backs; also a failure to write the outputs); `cfrd bench materials` when a model failed |
+//! | 101 | a bug: the panic hook aborts every rank, so a parallel job never hangs |
+#![cfg_attr(doc, doc = embed_doc_image::embed_image!("fig08", "scripts/figures/seed_static_gp_interface_fig08_slab_stress.png"))]

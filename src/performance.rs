@@ -1,0 +1,232 @@
+//! # Performance: run times, memory, Newton and solver figures
+//!
+//! Measured figures only, each with the commit and the command it came from. All were measured
+//! on the project's development machine: 2 cores, 23 GiB (`scripts/bench_solver.md`). Wall
+//! times are from `/usr/bin/time -v` or the run summary's `total_seconds`; memory is the peak
+//! resident set per rank. What the runs compute, and how their results compare, is in
+//! [`crate::verification`]; the options named here are explained in [`crate::guide`].
+//!
+//! Contents: [the main job](#the-main-job) · [seed dam runs](#seed-dam-runs) ·
+//! [the fine run](#the-fine-run) · [Newton](#newton-iterations-load-steps-and-the-integration-noise) ·
+//! [linear solvers on the seed dam](#linear-solvers-on-the-seed-dam) ·
+//! [checkpoints](#checkpoints) · [solver benchmark](#solver-benchmark) ·
+//! [material updates](#material-updates)
+//!
+//! ## The main job
+//!
+//! `bash ci/run-default.sh` runs the coarse seed scene with the GP interface on 2 ranks: 25 s of
+//! solving alone on the machine (row `GP interface` of the [coarse table](#seed-dam-runs)).
+//! Measured with `nice -n 10 /usr/bin/time -v bash ci/run-default.sh` at commit 0a9d568 (script
+//! of commit e27b2d4; dependencies already built), while other builds kept the load average at
+//! 5–9 on the 2 cores: 6 min 40 s in all, of which 1 min 15 s rebuilding `cfrd` and 323 s
+//! solving (`total_seconds`). Its counters are those of the table's row (532 Newton iterations,
+//! 118 steps, 5 cut-backs, 127 factorizations, 118 open and 295 slipping interface points), and
+//! its slab stresses and deflections at the elevations of the coarse slab table in
+//! [`crate::verification`] are the table's GP column.
+//!
+//! ## Seed dam runs
+//!
+//! The seed scenes (`inputs/scenes/seed_*.yaml`; [`crate::guide`]) on the canonical LU with
+//! reused factors, 8 load steps per stage, each run alone on the machine.
+//!
+//! **Coarse mesh** (3,360 DOFs, 14 stages; PETSc's LU). Source:
+//! `scripts/make_seed_static_figures.sh` at commit 51547bd, table
+//! `scripts/figures/seed_static_runs.csv`.
+//!
+//! | interface | ranks | wall time | peak memory per rank | Newton iterations | steps | cut-backs | factorizations | open / slipping interface points (of 780) |
+//! |---|---|---|---|---|---|---|---|---|
+//! | hyperbolic | 2 | 23 s | 85 MiB | 491 | 119 | 6 | 113 | 124 / 28 |
+//! | hyperbolic | 1 | 34 s | 86 MiB | 491 | 119 | 6 | 113 | 124 / 28 |
+//! | Mohr–Coulomb | 2 | 22 s | 83 MiB | 489 | 118 | 5 | 116 | 114 / 0 |
+//! | Mohr–Coulomb | 1 | 32 s | 89 MiB | 489 | 118 | 5 | 116 | 114 / 0 |
+//! | GP interface | 2 | 25 s | 86 MiB | 532 | 118 | 5 | 127 | 118 / 295 |
+//! | GP interface | 1 | 37 s | 89 MiB | 532 | 118 | 5 | 127 | 118 / 295 |
+//!
+//! Newton iterations per converged step (`newton_per_step` in `summary.json`): median 4 for all
+//! three models, mean 4.13 (hyperbolic), 4.14 (Mohr–Coulomb), 4.51 (GP interface), at most 14.
+//! With `reuse_factorization: false` (a factorization at every Jacobian) the 2-rank runs take
+//! 28, 28 and 31 s (commit 51547bd); the reused factors move the results by up to 8e-3
+//! relative in strain through a slightly different load path (the hyperbolic run cuts back 6
+//! times instead of 5) and the slab values by at most 0.01 MPa (`cfrd compare`).
+//!
+//! **Medium mesh** (9,414 elements, 35,151 DOFs, 37 stages; MUMPS on OpenBLAS), 2 ranks. Source:
+//! `MEDIUM=1 scripts/make_seed_static_figures.sh` at commit 51547bd, rows `medium_*` of
+//! `seed_static_runs.csv`.
+//!
+//! | interface | wall time | peak memory per rank | Newton iterations | steps | cut-backs | factorizations | Newton per step (median / mean / max) | open / slipping interface points (of 5,976) |
+//! |---|---|---|---|---|---|---|---|---|
+//! | hyperbolic | 9.7 min | 593 MiB | 1,236 | 307 | 8 | 322 | 4 / 4.03 / 15 | 500 / 246 |
+//! | Mohr–Coulomb | 9.4 min | 593 MiB | 1,220 | 309 | 10 | 317 | 4 / 3.95 / 15 | 482 / 6 |
+//! | GP interface | 11.3 min | 591 MiB | 1,267 | 315 | 16 | 339 | 4 / 4.02 / 15 | 492 / 2,546 |
+//!
+//! Of the hyperbolic run's 584 s, 233 s went into assembly (mostly the GP integration) and 347 s
+//! into the linear solves (`phase_seconds` of its `summary.json`).
+//!
+//! ## The fine run
+//!
+//! Fine mesh (76,502 elements, 256,461 DOFs, 86 fill layers, 95 stages; MUMPS on OpenBLAS),
+//! hyperbolic interface, 2 ranks. Source: commit 6549cb1: `scripts/run_in_parts.sh
+//! inputs/scenes/seed_fine_hyperbolic.yaml DIR 2`, seven parts, each restarted from the last
+//! checkpoint of the one before (from stage 88 on with `--checkpoint step`, and after the first
+//! two half steps of slab stage II with `--integration-tol-ratio 0.1`, see
+//! [Newton](#newton-iterations-load-steps-and-the-integration-noise)); row `fine_hyperbolic` of
+//! `seed_static_runs.csv` and the run's `parts.csv`. Times are net of the pauses in which the
+//! run was stopped (`kill -STOP`) so that tests and builds did not share its cores.
+//!
+//! | interface | wall time | peak memory per rank | Newton iterations | steps | cut-backs | factorizations | Newton per step (median / mean / max) | open / slipping interface points (of 25,304) |
+//! |---|---|---|---|---|---|---|---|---|
+//! | hyperbolic | 341 min (5.7 h) | 10.2 GiB | 2,930 | 763 | 3 | 789 | 4 / 3.84 / 15 | 1,294 / 1,566 |
+//!
+//! Where the time goes (same source unless noted):
+//!
+//! * Construction (stages 1–89) 240 min, impoundment 102 min.
+//! * Fill stages (progress lines, 10 s resolution; commit 3c2b190): 60–70 s around fill_020,
+//!   120–150 s at fill_035–050, 200–370 s in the first ten stages after slab stage I (slab_1
+//!   itself 311 s), 170–190 s at fill_080–086. The slab stage raises the cost of a stage without
+//!   changing the Newton work: the 104 load steps of fill_048 to fill_059 took 3.8 Newton
+//!   iterations and 1.02 factorizations per step, against 3.9 iterations for the 80 steps before
+//!   them and 0.97 factorizations per step over all 378 steps to fill_047; the factors grow
+//!   (`perf` at fill_051: about 80 % of the time in the MUMPS factorization, against about 35 %
+//!   at fill_015, where 20–25 % went into the GP integration and 5 % into gathering the coupled
+//!   block; commit b907149).
+//! * After the fill (net stage times; commit 684810e for slab_3): slab_2 (its last 7 steps)
+//!   12.8 min in 12 Newton iterations, slab_3 11.7 min in 13, impound_1 to impound_6 10.6, 15.8,
+//!   19.7, 17.7, 16.9 and 21.0 min in 18, 28, 27, 25, 25 and 33.
+//! * Memory per rank grows with the placed mesh and its factors (commit 3c2b190, `ps` or
+//!   `/usr/bin/time`): 1.5 GB at fill_021, 3.6 GB at fill_047, 5.6 GB after slab_1, 7.9 GB at
+//!   fill_086, 10.2 GiB from slab_3 on, where both ranks held 10.0–10.2 GiB (20.2 GiB together;
+//!   commit 3d4cadb). A part restarted in impound_3 held 10.1 GiB on rank 0 and 6.0 GiB on rank 1
+//!   (why rank 1 differs between parts was not looked into).
+//!
+//! Per part (`parts.csv`; parts 4–6 were killed, their times run to the checkpoint the next part
+//! started from):
+//!
+//! | part | stages | wall time | peak memory per rank |
+//! |---|---|---|---|
+//! | 1 | fill_001 to fill_020 | 10.7 min | 1.4 GiB |
+//! | 2 | fill_021 to fill_047 | 52.7 min | 3.4 GiB |
+//! | 3 | fill_048 to fill_086 (slab_1 at stage 51) | 139.4 min | 7.5 GiB |
+//! | 4 | slab_2 to λ = 0.0625 | 10.7 min | 5.8 GiB |
+//! | 5 | slab_2 to λ = 0.125 | 1.6 min | – |
+//! | 6 | slab_2 from λ = 0.125, slab_3, impound_1 to impound_3 (to λ = 0.625) | 63.9 min | 10.2 GiB |
+//! | 7 | impound_3 from λ = 0.625, impound_4 to impound_6 | 62.3 min | 10.1 GiB |
+//!
+//! ## Newton iterations, load steps and the integration noise
+//!
+//! * **Load steps per stage.** Every Newton iteration integrates the GP points over the whole
+//!   step increment from the committed state (spec models §8.1); with one load step per stage an
+//!   update takes 35–70 substeps on average (small GP dam of `tests/cfrd_dam.rs`), and a step too
+//!   large to converge spends its 15 iterations before it is cut back. Coarse hyperbolic seed
+//!   scene on 2 ranks (commit efe2165, factors not yet reused; `solver.load_steps` varied): one
+//!   step per stage 251 s with
+//!   29 cut-backs (while a test run shared the cores), eight 35 s with 5 (alone), sixteen 42 s
+//!   with 1 (while CI shared the cores). The small GP dam on 1 rank (`scripts/make_seed_scenes.sh`,
+//!   commit 6f13277): 1 step 56 s, 4 steps 17 s, 8 steps 13 s, 16 steps 11 s, 32 steps 12 s.
+//! * **Fill layers.** Two load steps per fill layer instead of eight
+//!   (`mesh.cfrd.fill_load_steps: 2`) made the fine mesh's first 9 fill stages take 211 s
+//!   instead of 110 s (commit b907149): a new layer's GP points start unconfined, where the
+//!   model is softest, so larger steps need more Newton iterations and substeps.
+//! * **Rockfill tangent.** With `tangent: numerical` Newton converges in 4–5 iterations to 1e-10
+//!   on a staged dam fill instead of creeping linearly; the continuum tangent of a 10⁻³ strain
+//!   step is 94 % off (commits ed2fa73, 0f413f9). The numerical tangent costs 13 integrations per
+//!   update instead of one ([material updates](#material-updates)).
+//! * **Newton tolerance.** The GP substepping (STOL 1e-4, spec models §8.2) leaves an
+//!   out-of-balance force of about 2e-6 of the layer weight (3e3 N at a cushion corner node of
+//!   the coarse mesh's first fill layer), below which Newton cannot go; the seed scenes therefore
+//!   set `newton_tol: 1.0e-5` (commits 0c5979e, 8005b4c).
+//! * **The integration noise on the fine mesh** (slab stage II, newton_tol 1e-5, `--monitor`;
+//!   commits 985bfc1, 6549cb1): the first load step (λ = 1/8) starts at a relative residual of
+//!   1.16e-4; the first Newton iteration brings it to 1.125e-4 and it stays there, to four
+//!   digits, for the remaining 14 iterations (largest out-of-balance force 25 kN, at a node of
+//!   the new slab at 2739 m). Half steps converge (λ = 0.0625 in 12 iterations, 0.125 in 3); the
+//!   step to λ = 0.25 stalls again at 1.128e-4. Restarted at λ = 0.125 with the GP rockfill at
+//!   STOL 1e-6 (`--integration-tol-ratio 0.1`), the same step converges in 3 iterations
+//!   (relative residuals 1.155e-4, 6.6e-5, 4.1e-5, 1.4e-6), and parts 6 and 7 ran so without a
+//!   cut-back. No effect on the stall: the elastic tangent of the GP rockfill at a step's start
+//!   or at every iteration, the closed normal stiffness as the tangent of open interface
+//!   points, the shear–normal coupling of the hyperbolic interface at its shear cap, the full
+//!   Newton step.
+//! * **Why the cap is off by default** (commit 9d6727b): with `integration_tol_ratio` on, two GP
+//!   dam tests of `tests/cfrd_dam.rs` (one load step per stage) exhaust the substep limit; a cap
+//!   applied only to a step that stalls made the same tests take 504 s instead of 117 s.
+//!
+//! ## Linear solvers on the seed dam
+//!
+//! * **GAMG** (the default iterative solver) fails in the fine mesh's first fill stage (PC
+//!   failed, SUBPC_ERROR; with `-pc_gamg_threshold 0` in the third; commit 74df5c9): the stiff
+//!   interfaces and joints defeat it. **BoomerAMG** (`-pc_type hypre`) runs, but took 13.0 min
+//!   for the fine mesh's first 8 fill stages (commit 0eb617d), against 1.6 min with the canonical
+//!   LU on MUMPS and reused factors (commit b907149).
+//! * **Factorization** of the canonical LU: on the coarse mesh PETSc's own LU is the fastest (its
+//!   first stage: MUMPS 12.1 s for 73 factorizations with the reference BLAS, PETSc's LU 1.1 s;
+//!   commit a04d54c, recorded in `scripts/make_seed_scenes.sh`). On the medium hyperbolic mesh,
+//!   restarted after stage 24 (commit 841f574; whole matrix factored, factors not reused), in
+//!   comparable wall time: PETSc's LU did 29 Newton iterations in 200 s with 95 % of the time in
+//!   the factorization, MUMPS on the reference BLAS 18 in 120 s, MUMPS on OpenBLAS 99 in 120 s,
+//!   UMFPACK 44, SuperLU 5, and MUMPS distributed over the two ranks (not canonical) 91 in 100 s.
+//!   Hence the medium and fine scenes' `-canonical_pc_factor_mat_solver_type mumps` and
+//!   `libopenblas0-serial` in `ci/install-deps.sh`.
+//! * **Refactoring threshold** (fine mesh, commit b907149): refactoring after 30 GMRES iterations
+//!   instead of the default 8 made the first 11 fill stages take 201 s instead of 170 s; after
+//!   4, 186 s.
+//! * **Line search.** The full Newton step (`-snes_linesearch_type basic`) instead of the `l2`
+//!   line search saves residual evaluations: the fine mesh's first 12 fill stages took 171 s
+//!   instead of 201 s, and the coarse hyperbolic run 15.7 s instead of 23 s with 12 cut-backs
+//!   instead of 6 (commit b907149). It is not the default: `l2` is the more robust on the hard
+//!   cases (on the fine mesh's slab stage II the full step left out-of-balance forces of 4e8 N
+//!   and cut back to λ = 0.004; commit 9d6727b).
+//!
+//! ## Checkpoints
+//!
+//! * Step checkpoints on the coarse hyperbolic scene, 2 ranks (commit 809a854): each starts a
+//!   fresh preconditioner, so the factors serve fewer steps: 192 factorizations instead of 113,
+//!   24.6 s instead of 22.6 s (`total_seconds`).
+//! * A checkpoint of the fine run is 102–105 MB; those of its part 7 (one after every load step
+//!   and every stage) took 9.3 s of its 62 min, the results output 10.9 s (commit 6549cb1).
+//!
+//! ## Solver benchmark
+//!
+//! `bash scripts/bench_solver.sh` (commit 0f413f9, table `scripts/bench_solver.md`, measured
+//! 2026-11-23, load average before the run 1.95 1.71 1.62): the seed-like dam section (H 171 m,
+//! 1:1.4 slopes, 355 m long) at three sizes, linear-elastic self-weight, the default solver
+//! (CG with GAMG and the rigid-body near-null space, rtol 1e-10). Assembly and solve are wall times of
+//! the slowest rank, memory the peak resident set of the largest rank.
+//!
+//! | ranks | DOFs | elements | assembly (s) | solve (s) | KSP iterations | peak memory, max over ranks (MiB) | DOFs/s (assembly + solve) |
+//! |---|---|---|---|---|---|---|---|
+//! | 1 | 101568 | 30690 | 1.47 | 10.35 | 160 | 253 | 8595 |
+//! | 2 | 101568 | 30690 | 0.70 | 4.76 | 162 | 240 | 18591 |
+//! | 1 | 297792 | 92690 | 4.00 | 32.90 | 183 | 670 | 8070 |
+//! | 2 | 297792 | 92690 | 2.45 | 19.09 | 186 | 622 | 13826 |
+//! | 1 | 997920 | 317814 | 14.04 | 140.76 | 203 | 2160 | 6446 |
+//! | 2 | 997920 | 317814 | 8.61 | 78.00 | 208 | 2020 | 11522 |
+//!
+//! KSP iterations grow from 160 to 203 (+27 %) over a tenfold growth of the mesh, where
+//! unpreconditioned CG would grow about 2.2× (h⁻¹); the level is set by the thin crest elements
+//! of the structured section, and `-pc_type hypre` takes 16 iterations at 100k DOFs. The two
+//! ranks share two cores, so the 2-rank speed-up (1.8–2.1× on the solve) is what this machine
+//! can show.
+//!
+//! ## Material updates
+//!
+//! `cfrd bench materials` (commit 0f413f9; one core; [`crate::material::bench`]):
+//! integration-point updates per second.
+//!
+//! | model | path | updates/s (1 core) | µs/update | substeps/update | updates × passes × reps | path and increments |
+//! |---|---|---:|---:|---:|---:|---|
+//! | rockfill_gp | monotonic | 3.227e5 | 3.099 | 2.52 | 200 × 85 × 7 | drained triaxial, σ3 = 1000 kPa, dε_a = 5e-4 per step to 10 % |
+//! | rockfill_gp | cyclic | 2.554e5 | 3.915 | 3.08 | 250 × 53 × 7 | drained cyclic triaxial, σ3 = 1000 kPa, q 0–2500 kPa, dq = 100 kPa per step, 5 cycles |
+//! | gp_interface | monotonic | 8.659e5 | 1.155 | 1.03 | 300 × 154 × 7 | CNL direct shear, σn = 400 kPa, du = 0.2 mm per step to 60 mm |
+//! | gp_interface | cyclic | 8.060e5 | 1.241 | 1.09 | 600 × 73 × 7 | CNL direct shear, σn = 400 kPa, ±10 mm, du = 0.2 mm per step, 3 cycles |
+//! | hyperbolic | monotonic | 5.063e6 | 0.198 | 1.00 | 300 × 858 × 7 | as gp_interface |
+//! | hyperbolic | cyclic | 5.378e6 | 0.186 | 1.01 | 600 × 470 × 7 | as gp_interface |
+//! | mohr_coulomb | monotonic | 1.339e7 | 0.075 | 1.00 | 300 × 2289 × 7 | as gp_interface |
+//! | mohr_coulomb | cyclic | 1.446e7 | 0.069 | 1.00 | 600 × 1219 × 7 | as gp_interface |
+//! | joint | monotonic | 4.967e7 | 0.020 | 1.00 | 300 × 8472 × 7 | as gp_interface |
+//! | joint | cyclic | 4.845e7 | 0.021 | 1.00 | 600 × 4263 × 7 | as gp_interface |
+//! | elastic | monotonic | 2.682e7 | 0.037 | 1.00 | 200 × 6838 × 7 | as rockfill_gp |
+//! | elastic | cyclic | 2.808e7 | 0.036 | 1.00 | 250 × 3606 × 7 | as rockfill_gp |
+//!
+//! The generalized-plasticity models pay for substepping (2.5–3 substeps per update at these
+//! increments); with `tangent: numerical` the rockfill update costs 13 integrations instead of
+//! one.

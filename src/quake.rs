@@ -1,0 +1,176 @@
+//! What an earthquake stage leaves without a profile definition: the time history of the crest
+//! (relative displacement, absolute acceleration, ground acceleration), its residual
+//! displacement (end of the quake minus the state before it, the seed's "residual deformation",
+//! spec seismic §3.1 item 3) and the acceleration amplification (peak absolute crest over peak
+//! ground acceleration, spec seismic §3.6). Written by `cfrd run` after a scene with a dynamic
+//! stage: `quake_crest.csv`, `quake_crest.png` and `quake_summary.json`.
+
+use crate::io::compare::{open, stage_name, step_names};
+use crate::plot::{Figure, Panel, Series};
+use crate::scene::Scene;
+use std::path::{Path, PathBuf};
+
+/// The crest's history over the first dynamic stage of a run.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct CrestHistory {
+    /// Index of the crest node (the highest node nearest the middle of the dam axis).
+    pub node: usize,
+    /// Time in the stage (s) of every written step.
+    pub t: Vec<f64>,
+    /// Displacement relative to the base, minus the one before the quake (m).
+    pub u: Vec<[f64; 3]>,
+    /// Absolute acceleration (m/s²).
+    pub a: Vec<[f64; 3]>,
+    /// Ground acceleration (m/s²).
+    pub ground: Vec<[f64; 3]>,
+}
+
+/// The summary written to `quake_summary.json`.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct QuakeSummary {
+    /// Mesh id of the crest node.
+    pub crest_node_id: u64,
+    /// Residual crest displacement, end of the quake minus before it (m; x, y, z).
+    pub residual_displacement_m: [f64; 3],
+    /// Peak absolute crest acceleration (m/s²; x, y, z) over the written steps.
+    pub peak_crest_acceleration: [f64; 3],
+    /// Peak ground acceleration of the record over the stage (m/s²; x, y, z).
+    pub peak_ground_acceleration: [f64; 3],
+    /// Peak crest over peak ground acceleration per axis.
+    pub amplification: [f64; 3],
+}
+
+/// The highest node nearest the middle of the dam axis (then of the stream direction).
+pub fn crest_node(scene: &Scene) -> usize {
+    let c = &scene.mesh.coords;
+    let top = c.iter().map(|x| x[2]).fold(f64::MIN, f64::max);
+    let (y0, y1) = c
+        .iter()
+        .fold((f64::MAX, f64::MIN), |(a, b), x| (a.min(x[1]), b.max(x[1])));
+    let mid = 0.5 * (y0 + y1);
+    (0..c.len())
+        .filter(|&i| c[i][2] >= top - 1e-6 * top.abs().max(1.0))
+        .min_by(|&a, &b| (c[a][1] - mid).abs().total_cmp(&(c[b][1] - mid).abs()))
+        .unwrap_or(0)
+}
+
+/// Reads the crest history of the first dynamic stage from the closed results file `h5`;
+/// `None` when the scene has no dynamic stage or the file no step of it.
+pub fn crest_history(scene: &Scene, h5: &Path) -> Result<Option<CrestHistory>, String> {
+    let Some(k) = scene.stages.iter().position(|s| s.dynamic.is_some()) else {
+        return Ok(None);
+    };
+    let stage = &scene.stages[k];
+    let dynamic = stage.dynamic.as_ref().expect("a dynamic stage");
+    let node = crest_node(scene);
+    let file = open(h5)?;
+    let mut before = [0.0; 3];
+    let mut hist = CrestHistory {
+        node,
+        ..Default::default()
+    };
+    for name in step_names(&file, h5)? {
+        let g = file.group(&format!("/steps/{name}")).map_err(|e| e.to_string())?;
+        let at = |field: &str| -> Result<[f64; 3], String> {
+            let v = g
+                .dataset(field)
+                .and_then(|d| d.read_raw::<f64>())
+                .map_err(|e| format!("{}: /steps/{name}/{field}: {e}", h5.display()))?;
+            v.get(3 * node..3 * node + 3)
+                .map(|s| [s[0], s[1], s[2]])
+                .ok_or_else(|| format!("{}: /steps/{name}/{field} is too short", h5.display()))
+        };
+        let this = stage_name(&g).unwrap_or_default();
+        if k > 0 && this == scene.stages[k - 1].name {
+            before = at("displacement")?;
+        } else if this == stage.name {
+            let time: f64 = g
+                .attr("time")
+                .and_then(|a| a.read_scalar())
+                .map_err(|e| e.to_string())?;
+            let t = (time - k as f64) * dynamic.duration;
+            let u = at("displacement")?;
+            hist.t.push(t);
+            hist.u.push(std::array::from_fn(|c| u[c] - before[c]));
+            hist.a.push(at("acceleration")?);
+            hist.ground.push(dynamic.ground_acceleration(t));
+        }
+    }
+    Ok((!hist.t.is_empty()).then_some(hist))
+}
+
+/// The summary of a crest history (`scene` for the node id and the record's peaks).
+pub fn summarize(scene: &Scene, h: &CrestHistory) -> QuakeSummary {
+    let peak = |v: &[[f64; 3]]| -> [f64; 3] {
+        std::array::from_fn(|c| v.iter().map(|x| x[c].abs()).fold(0.0, f64::max))
+    };
+    let dynamic = scene.stages.iter().find_map(|s| s.dynamic.as_ref());
+    let pga: [f64; 3] = match dynamic {
+        Some(d) => {
+            let n = (d.duration / d.record.dt()).round() as usize;
+            let samples: Vec<[f64; 3]> = (0..=n)
+                .map(|i| d.ground_acceleration(i as f64 * d.record.dt()))
+                .collect();
+            peak(&samples)
+        }
+        None => [0.0; 3],
+    };
+    let crest = peak(&h.a);
+    QuakeSummary {
+        crest_node_id: scene.mesh.node_ids[h.node],
+        residual_displacement_m: h.u.last().copied().unwrap_or_default(),
+        peak_crest_acceleration: crest,
+        peak_ground_acceleration: pga,
+        amplification: std::array::from_fn(|c| if pga[c] > 0.0 { crest[c] / pga[c] } else { 0.0 }),
+    }
+}
+
+/// Writes `quake_crest.csv`, `quake_crest.png` and `quake_summary.json` into `dir` for a run
+/// whose results are `h5`; nothing for a scene without a dynamic stage.
+pub fn write_quake_outputs(scene: &Scene, h5: &Path, dir: &Path) -> Result<Vec<PathBuf>, String> {
+    let Some(h) = crest_history(scene, h5)? else {
+        return Ok(Vec::new());
+    };
+    let mut csv = String::from("t,u_x,u_y,u_z,a_x,a_y,a_z,ag_x,ag_y,ag_z\n");
+    for i in 0..h.t.len() {
+        let row: Vec<String> = std::iter::once(h.t[i])
+            .chain(h.u[i])
+            .chain(h.a[i])
+            .chain(h.ground[i])
+            .map(|v| v.to_string())
+            .collect();
+        csv.push_str(&row.join(","));
+        csv.push('\n');
+    }
+    let files = [
+        dir.join("quake_crest.csv"),
+        dir.join("quake_crest.png"),
+        dir.join("quake_summary.json"),
+    ];
+    std::fs::write(&files[0], csv).map_err(|e| format!("{}: {e}", files[0].display()))?;
+    crest_figure(&h)
+        .save_png(&files[1])
+        .map_err(|e| format!("{}: {e}", files[1].display()))?;
+    let json = serde_json::to_string_pretty(&summarize(scene, &h)).map_err(|e| e.to_string())?;
+    std::fs::write(&files[2], json).map_err(|e| format!("{}: {e}", files[2].display()))?;
+    Ok(files.to_vec())
+}
+
+/// Crest acceleration against the ground's (stream direction) and the crest's displacement
+/// since the quake began.
+fn crest_figure(h: &CrestHistory) -> Figure {
+    let series = |v: &[[f64; 3]], c: usize| h.t.iter().zip(v).map(|(&t, x)| (t, x[c])).collect::<Vec<_>>();
+    Figure::new("Earthquake: crest history")
+        .with(
+            Panel::new("absolute acceleration, stream direction (x)", "t (s)", "a (m/s2)")
+                .with(Series::line("crest", series(&h.a, 0)))
+                .with(Series::line("ground", series(&h.ground, 0))),
+        )
+        .with(
+            Panel::new("crest displacement since the quake began", "t (s)", "u (m)")
+                .with(Series::line("u_x (stream)", series(&h.u, 0)))
+                .with(Series::line("u_y (axis)", series(&h.u, 1)))
+                .with(Series::line("u_z (settlement < 0)", series(&h.u, 2))),
+        )
+        .columns(1)
+}

@@ -1,0 +1,207 @@
+//! Dynamic stages (spec seismic §3): a ground-acceleration record on a rigid base, integrated
+//! in time from the state the previous stages left, with the static loads kept.
+//!
+//! ```yaml
+//! stages:
+//!   - name: quake
+//!     loads: { hydrostatic: [ { faces: upstream, level: 2840.0 } ] }
+//!     dynamic:
+//!       record: ../accel/seed_quake.csv     # t,a_x,a_y,a_z in m/s² (cfrd accel writes it)
+//!       duration: 20.0                      # s, default the record's length
+//!       dt: 0.01                            # s, default the record's sample interval
+//!       damping: { ratio: 0.05, frequencies: [1.0, 5.0] }   # Rayleigh on M and K₀
+//!       mass: consistent                    # or lumped
+//!       output_every: 10                    # fields every 10 steps (0: at the end only)
+//! ```
+
+use super::error::SceneError;
+use crate::seismic::Accelerogram;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+
+/// How a stage is integrated in time (scene key `stages[k].dynamic`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct DynamicSpec {
+    /// Ground acceleration record: CSV with the header `t,a_x,a_y,a_z` (m/s², the scene's axes
+    /// x stream, y dam axis, z up), relative to the scene's folder.
+    pub record: PathBuf,
+    /// Factor on all three components of the record (default 1).
+    #[serde(default = "one")]
+    pub scale: f64,
+    /// Duration of the stage (s); default the record's length.
+    #[serde(default)]
+    pub duration: Option<f64>,
+    /// Time step (s); default the record's sample interval.
+    #[serde(default)]
+    pub dt: Option<f64>,
+    /// Newmark's β and γ (default 1/4 and 1/2, average acceleration).
+    #[serde(default)]
+    pub newmark: NewmarkSpec,
+    /// Mass matrix: `consistent` (default) or `lumped` (row sums).
+    #[serde(default)]
+    pub mass: MassKind,
+    /// Rayleigh damping C = a_M·M + a_K·K₀ from a ratio at two frequencies; none by default
+    /// (the materials' hysteresis only).
+    #[serde(default)]
+    pub damping: Option<RayleighSpec>,
+    /// Write the fields every this many steps besides the stage's end (0: the end only).
+    #[serde(default)]
+    pub output_every: u32,
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+/// Newmark's parameters.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct NewmarkSpec {
+    /// β (1/4: average acceleration, unconditionally stable).
+    pub beta: f64,
+    /// γ (1/2: no numerical damping).
+    pub gamma: f64,
+}
+
+impl Default for NewmarkSpec {
+    fn default() -> Self {
+        NewmarkSpec {
+            beta: 0.25,
+            gamma: 0.5,
+        }
+    }
+}
+
+/// Consistent or lumped mass.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum MassKind {
+    /// M = Σ ∫ ρ NᵀN dV.
+    #[default]
+    Consistent,
+    /// Row sums on the diagonal.
+    Lumped,
+}
+
+/// Rayleigh damping: the ratio ζ reached at two frequencies.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct RayleighSpec {
+    /// Damping ratio ζ at both frequencies (e.g. 0.05).
+    pub ratio: f64,
+    /// The two anchor frequencies (Hz), f1 < f2.
+    pub frequencies: [f64; 2],
+}
+
+impl DynamicStage {
+    /// The scaled ground acceleration at time `t` of the stage (m/s²; zero after the record).
+    pub fn ground_acceleration(&self, t: f64) -> [f64; 3] {
+        self.record.at(t).map(|a| self.scale * a)
+    }
+}
+
+/// A validated dynamic stage.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DynamicStage {
+    /// The ground acceleration record (m/s²).
+    pub record: Accelerogram,
+    /// Factor on the record.
+    pub scale: f64,
+    /// Duration of the stage (s).
+    pub duration: f64,
+    /// Time steps of the stage (duration / dt, rounded).
+    pub steps: u32,
+    /// Newmark's β and γ.
+    pub newmark: NewmarkSpec,
+    /// Lumped mass.
+    pub lumped: bool,
+    /// Rayleigh damping (ratio, f1, f2).
+    pub damping: Option<RayleighSpec>,
+    /// Output every this many steps (0: the end only).
+    pub output_every: u32,
+}
+
+/// Largest number of time steps of one dynamic stage.
+pub const MAX_STEPS: f64 = 10_000_000.0;
+
+/// Validates `spec` (YAML path `path`), reading the record relative to `base`.
+pub fn resolve(
+    spec: &DynamicSpec,
+    base: &Path,
+    path: &str,
+    invalid: &dyn Fn(&str, String) -> SceneError,
+) -> Result<DynamicStage, SceneError> {
+    let inv = |key: &str, message: String| invalid(&format!("{path}.{key}"), message);
+    let file = base.join(&spec.record);
+    let record = Accelerogram::read_csv(&file).map_err(|e| inv("record", e.to_string()))?;
+    if !(spec.scale.is_finite() && spec.scale > 0.0) {
+        return Err(inv(
+            "scale",
+            format!("{} must be finite and positive", spec.scale),
+        ));
+    }
+    let duration = spec.duration.unwrap_or(record.duration());
+    if !(duration.is_finite() && duration > 0.0) {
+        return Err(inv(
+            "duration",
+            format!("{duration} s must be finite and positive"),
+        ));
+    }
+    let dt = spec.dt.unwrap_or(record.dt());
+    let n = (duration / dt).round();
+    if !(dt.is_finite() && dt > 0.0 && dt <= duration) || n > MAX_STEPS {
+        return Err(inv(
+            "dt",
+            format!("{dt} s must be finite, positive, at most the duration {duration} s and give at most {MAX_STEPS} steps"),
+        ));
+    }
+    check_newmark(&spec.newmark).map_err(|m| inv("newmark", m))?;
+    if let Some(d) = &spec.damping {
+        check_damping(d).map_err(|m| inv("damping", m))?;
+    }
+    Ok(DynamicStage {
+        record,
+        scale: spec.scale,
+        duration,
+        steps: n as u32,
+        newmark: spec.newmark,
+        lumped: spec.mass == MassKind::Lumped,
+        damping: spec.damping,
+        output_every: spec.output_every,
+    })
+}
+
+/// β > 0 and γ ≥ 1/2 (unconditional stability needs 2β ≥ γ ≥ 1/2; conditional schemes are
+/// allowed but not below γ = 1/2, which would amplify).
+fn check_newmark(n: &NewmarkSpec) -> Result<(), String> {
+    if n.beta.is_finite()
+        && n.gamma.is_finite()
+        && n.beta > 0.0
+        && n.gamma >= 0.5
+        && n.beta <= 1.0
+        && n.gamma <= 1.0
+    {
+        Ok(())
+    } else {
+        Err(format!(
+            "beta {} must be in (0, 1] and gamma {} in [0.5, 1]",
+            n.beta, n.gamma
+        ))
+    }
+}
+
+/// 0 ≤ ζ < 1 and 0 < f1 < f2, all finite.
+fn check_damping(d: &RayleighSpec) -> Result<(), String> {
+    let [f1, f2] = d.frequencies;
+    if !(d.ratio.is_finite() && (0.0..1.0).contains(&d.ratio)) {
+        return Err(format!("ratio {} must be in [0, 1)", d.ratio));
+    }
+    if !(f1.is_finite() && f2.is_finite() && f1 > 0.0 && f2 > f1) {
+        return Err(format!(
+            "frequencies [{f1}, {f2}] Hz must be finite with 0 < f1 < f2"
+        ));
+    }
+    Ok(())
+}

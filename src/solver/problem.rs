@@ -1,0 +1,162 @@
+//! The problem on this rank: the model, its constraints and loads, the nonlinear solver and
+//! the time integrator of the current stage, composed; a stage advances by the step control
+//! ([`StepControl::advance`]) through [`Problem::solve_step`].
+
+use super::constraints::Constraints;
+use super::discretization::Discretization;
+use super::error::SolveError;
+use super::integrator::{QuasiStatic, TimeIntegrator};
+use super::loads::{add_placement_force, Loads};
+use super::model::Model;
+use super::newton::{self, StepTarget};
+use super::report::{InterfaceCounts, SolveReport};
+use super::step_control::StepControl;
+use crate::linalg::petsc::{CanonicalSettings, Petsc, Snes};
+use crate::scene::schema::LinearSolver;
+use crate::scene::Scene;
+use mpi::topology::SimpleCommunicator;
+use mpi::traits::Communicator;
+use partition::Cells;
+
+/// The rank-local problem of a staged run.
+pub struct Problem<'a> {
+    pub(super) scene: &'a Scene,
+    pub(super) comm: &'a SimpleCommunicator,
+    pub(super) model: Model<'a>,
+    pub(super) constraints: Constraints,
+    pub(super) loads: Loads,
+    /// The nonlinear solver (taken out while it runs a step).
+    pub(super) snes: Option<Snes>,
+    /// The time integrator of the current stage.
+    pub(super) integrator: Box<dyn TimeIntegrator>,
+    /// Index of the current stage in `scene.stages`.
+    pub(super) stage: usize,
+    /// Per owned node: displacement at the end of the stage that placed it; reported
+    /// displacements count from there (the surface of a new lift starts at zero).
+    pub(super) node_offset: Vec<[f64; 3]>,
+    /// Per owned node: whether it is part of a placed element already at the start of the stage.
+    pub(super) node_was_active: Vec<bool>,
+    /// Displacement of the owned DOFs at the start of the stage (for step checkpoints: the
+    /// fixed DOFs' start values are recomputed from it on a restart within the stage).
+    pub(super) u_stage_start: Vec<f64>,
+}
+
+impl<'a> Problem<'a> {
+    /// Sets up the rank-local problem for a given element partition on the ranks of `comm`.
+    /// The scene's and the command line's PETSc options are applied here, so a bad one is an
+    /// input error.
+    pub fn new(
+        petsc: &Petsc,
+        comm: &'a SimpleCommunicator,
+        scene: &'a Scene,
+        cells: Cells,
+        disc: Discretization,
+    ) -> Result<Self, SolveError> {
+        let constraints = Constraints::new(&disc, &scene.fixed);
+        let n_owned_nodes = disc.owned_nodes.len();
+        let model = Model::new(petsc, comm, scene, &cells, disc)?;
+        let snes = Self::nonlinear_solver(petsc, scene, &model)?;
+        let loads = Loads::new(&model.u)?;
+        Ok(Problem {
+            scene,
+            comm,
+            model,
+            constraints,
+            loads,
+            snes: Some(snes),
+            integrator: Box::new(QuasiStatic),
+            stage: 0,
+            node_offset: vec![[0.0; 3]; n_owned_nodes],
+            node_was_active: vec![false; n_owned_nodes],
+            u_stage_start: Vec::new(),
+        })
+    }
+
+    /// SNES with the scene's solver settings: CG only when every tangent is symmetric (the
+    /// non-associated GP models are not), the canonical LU when the scene asks for it.
+    fn nonlinear_solver(petsc: &Petsc, scene: &Scene, model: &Model) -> Result<Snes, SolveError> {
+        let canonical = match scene.file.solver.linear_solver {
+            LinearSolver::Iterative => None,
+            LinearSolver::CanonicalLu => Some(CanonicalSettings {
+                dofs: model.disc.canonical_dofs(),
+                reuse_factorization: scene.file.solver.reuse_factorization,
+            }),
+        };
+        Ok(Snes::new(
+            petsc,
+            scene.file.solver.newton_max_iterations,
+            scene.file.solver.rtol,
+            scene.file.solver.max_iterations,
+            model.symmetric_tangent(),
+            canonical,
+        )?)
+    }
+
+    /// The rank-local indexing.
+    pub fn discretization(&self) -> &Discretization {
+        &self.model.disc
+    }
+
+    /// Counts of open and slipping interface points in the committed state (collective).
+    pub fn interface_counts(&self) -> InterfaceCounts {
+        self.model.interface_counts()
+    }
+
+    /// One converged step of the current stage along `path` (the caller advances until
+    /// [`StepControl::done`]): a failed step is cut back at most `max_cutbacks` times in a
+    /// row and grown back after two successes. Collective.
+    pub fn advance(
+        &mut self,
+        path: &mut StepControl,
+        max_cutbacks: u32,
+        report: &mut SolveReport,
+    ) -> Result<(), SolveError> {
+        let monitor = self.scene.file.solver.monitor && self.comm.rank() == 0;
+        path.advance(max_cutbacks, monitor, report, |t0, t1, report| {
+            self.solve_step(t0, t1, report)
+        })
+    }
+
+    /// Solves the step from the converged stage time `t0` to `t1` to equilibrium (loads and
+    /// prescribed displacements at the integrator's load factor of `t1`) and commits the
+    /// states. On failure the problem is back at its committed state. Collective.
+    pub fn solve_step(&mut self, t0: f64, t1: f64, report: &mut SolveReport) -> Result<(), SolveError> {
+        self.integrator.begin_step(t0, t1);
+        let lambda = self.integrator.load_factor(t1);
+        let r = self.newton(lambda, report);
+        if r.is_err() {
+            self.model.revert()?;
+            return r;
+        }
+        self.integrator.accept(&self.model.u)?;
+        r
+    }
+
+    /// Newton on SNES for the step at load factor `lambda` ([`newton`]).
+    fn newton(&mut self, lambda: f64, report: &mut SolveReport) -> Result<(), SolveError> {
+        let mut f_ext = self.model.u.duplicate()?;
+        let terms = &self.scene.stages[self.stage].terms;
+        self.loads
+            .external_force(&self.model, terms, lambda, &mut f_ext)?;
+        add_placement_force(&self.model, &mut f_ext)?;
+        let target = StepTarget {
+            f_ext,
+            targets: self.constraints.targets(self.model.disc.dof_lo, lambda),
+            rows: self.constraints.rows(),
+            lambda,
+        };
+        let mut snes = self
+            .snes
+            .take()
+            .expect("the nonlinear solver is in place between steps");
+        let solved = newton::solve(
+            &mut self.model,
+            &mut snes,
+            self.integrator.as_ref(),
+            target,
+            report,
+        );
+        self.snes = Some(snes);
+        solved
+    }
+}

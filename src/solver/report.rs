@@ -1,0 +1,77 @@
+//! What a solve reports: counters and timings, counts of open and slipping interface points,
+//! and the rank-local results of the committed state.
+
+use super::interface::InterfaceElementOutput;
+use crate::tensor::{Strain6, Stress6};
+
+/// Counters and timings of a solve.
+#[derive(Debug, Clone, Default, serde::Serialize, serde::Deserialize)]
+pub struct SolveReport {
+    /// Newton iterations.
+    pub newton_iterations: u32,
+    /// KSP iterations of each linear solve.
+    pub ksp_iterations: Vec<u32>,
+    /// Relative residual after each Newton iteration.
+    pub residuals: Vec<f64>,
+    /// Wall time in assembly (s).
+    pub assembly_seconds: f64,
+    /// Wall time in linear solves (s).
+    pub solve_seconds: f64,
+    /// Converged load steps.
+    pub steps: u32,
+    /// Step cut-backs (a failed step retried with half the increment).
+    pub cutbacks: u32,
+    /// Newton iterations of each converged step.
+    pub newton_per_step: Vec<u32>,
+    /// Numeric factorizations of the canonical direct solver.
+    #[serde(default)]
+    pub factorizations: u64,
+    /// Wall-clock seconds of each completed stage, for the run summary.
+    #[serde(default)]
+    pub stage_seconds: Vec<crate::io::summary::StageSeconds>,
+}
+
+/// Counts of interface points in the committed state (all ranks).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
+pub struct InterfaceCounts {
+    /// Interface and joint points of placed elements.
+    pub points: u64,
+    /// Points that are open.
+    pub open: u64,
+    /// Points on the plastic (slipping) branch.
+    pub slipping: u64,
+}
+
+/// Rank-local results in input order of the owned nodes and elements.
+#[derive(Debug, Clone, Default)]
+pub struct LocalResults {
+    /// Owned nodes (input indices).
+    pub nodes: Vec<u32>,
+    /// Displacement of each owned node (m).
+    pub displacement: Vec<[f64; 3]>,
+    /// Reaction force of each owned node (N), zero where no component is fixed.
+    pub reaction: Vec<[f64; 3]>,
+    /// Owned elements (input indices).
+    pub elements: Vec<u32>,
+    /// Mean stress of each owned element (Pa, tension positive).
+    pub stress: Vec<Stress6>,
+    /// Mean strain of each owned element (engineering shear, tension positive).
+    pub strain: Vec<Strain6>,
+    /// Interface output of each owned element (zero for solid elements).
+    pub interface: Vec<InterfaceElementOutput>,
+    /// Mean local jump (δ_s, δ_a, δ_n) of each owned interface element since its placement (m;
+    /// zero for solid elements), spec (E4), (E9).
+    pub jump: Vec<[f64; 3]>,
+    /// In a dynamic stage: velocity relative to the base (m/s) and absolute acceleration
+    /// (relative plus ground, m/s²) of each owned node; `None` in a static stage.
+    pub motion: Option<NodeMotion>,
+}
+
+/// Velocities and accelerations of the owned nodes in a dynamic stage.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct NodeMotion {
+    /// Velocity relative to the base (m/s).
+    pub velocity: Vec<[f64; 3]>,
+    /// Absolute acceleration, relative plus ground (m/s²).
+    pub acceleration: Vec<[f64; 3]>,
+}

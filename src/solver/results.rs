@@ -1,0 +1,122 @@
+//! The rank-local results of the committed state: displacements from each node's placement,
+//! reactions, mean element stresses and strains, interface tractions and jumps.
+
+use super::error::SolveError;
+use super::loads::add_placement_force;
+use super::model::BlockStates;
+use super::problem::Problem;
+use super::report::{LocalResults, NodeMotion};
+use super::solid::Vector24;
+use crate::element::hex8::Hex8Geometry;
+use crate::tensor::{Strain6, Stress6};
+
+impl Problem<'_> {
+    /// Collects the rank-local results (owned nodes and elements) at the committed state.
+    /// Collective.
+    pub fn results(&mut self) -> Result<LocalResults, SolveError> {
+        let mut out = self.node_results()?;
+        out.motion = self.integrator.rates()?.map(|r| NodeMotion {
+            velocity: r.velocity.chunks(3).map(|c| [c[0], c[1], c[2]]).collect(),
+            acceleration: r
+                .acceleration
+                .chunks(3)
+                .map(|c| std::array::from_fn(|k| c[k] + r.ground[k]))
+                .collect(),
+        });
+        let u_loc = self.model.local_u()?;
+        let model = &self.model;
+        out.elements = model.disc.owned_elements.clone();
+        for (i, &e) in model.disc.elements.iter().enumerate() {
+            if !model.disc.element_owned[i] {
+                continue;
+            }
+            let loc = &model.disc.element_local[i];
+            let ue = Vector24::from_fn(|k, _| u_loc[3 * loc[k / 3] as usize + k % 3]) - model.elem_ref[i];
+            self.element_result(i, e as usize, &ue, &mut out)?;
+        }
+        Ok(out)
+    }
+
+    /// Displacements (from each node's placement) and reactions of the owned nodes.
+    fn node_results(&mut self) -> Result<LocalResults, SolveError> {
+        let mut f_int = self.model.u.duplicate()?;
+        self.model.assemble(&mut f_int, false, false)?;
+        let mut f_ext = self.model.u.duplicate()?;
+        let terms = &self.scene.stages[self.stage].terms;
+        self.loads.external_force(&self.model, terms, 1.0, &mut f_ext)?;
+        add_placement_force(&self.model, &mut f_ext)?;
+        let mut reac = f_int;
+        reac.axpy(-1.0, &f_ext)?;
+        let reac_all: Vec<f64> = reac.read(|s| s.to_vec())?;
+        let u_own: Vec<f64> = self.model.u.read(|s| s.to_vec())?;
+        let is_fixed = self.constraints.mask(&self.model.disc);
+        let mut out = LocalResults {
+            nodes: self.model.disc.owned_nodes.clone(),
+            ..Default::default()
+        };
+        for i in 0..self.model.disc.owned_nodes.len() {
+            let o = self.node_offset[i];
+            out.displacement.push([
+                u_own[3 * i] - o[0],
+                u_own[3 * i + 1] - o[1],
+                u_own[3 * i + 2] - o[2],
+            ]);
+            out.reaction.push(std::array::from_fn(|c| {
+                if is_fixed[3 * i + c] {
+                    reac_all[3 * i + c]
+                } else {
+                    0.0
+                }
+            }));
+        }
+        Ok(out)
+    }
+
+    /// Appends the mean strain and stress (solids) or the interface output and mean jump
+    /// (interfaces) of the `i`-th evaluated element (input index `e`, displacement `ue` since
+    /// its placement) to `out`; zeros for an element not yet placed.
+    fn element_result(
+        &self,
+        i: usize,
+        e: usize,
+        ue: &Vector24,
+        out: &mut LocalResults,
+    ) -> Result<(), SolveError> {
+        let model = &self.model;
+        let mesh = &self.scene.mesh;
+        let (b, be) = model.elem_block[i];
+        let (mut strain, mut stress) = (Strain6::default(), Stress6::default());
+        let mut iface = Default::default();
+        let mut jump = [0.0; 3];
+        match &model.blocks[b] {
+            _ if !model.active_block[b] => {}
+            BlockStates::Solid(block) => {
+                let geo = Hex8Geometry::new(&mesh.element_coords(e)).map_err(|_| SolveError::Geometry {
+                    element: mesh.elements[e].id,
+                })?;
+                let eps = geo.strain_increments(ue);
+                strain = eps
+                    .iter()
+                    .fold(Strain6::default(), |a, s| Strain6(a.0 + s.0 / 8.0));
+                stress = block.mean_stress(be);
+            }
+            BlockStates::Interface(block) => {
+                let geo = model.iface_geo[i]
+                    .as_ref()
+                    .expect("interface geometry built at set-up");
+                let w = 1.0 / geo.area_w.len() as f64;
+                for j in geo.jumps(ue) {
+                    for c in 0..3 {
+                        jump[c] += w * j[c];
+                    }
+                }
+                iface = block.output(be);
+            }
+        }
+        out.strain.push(strain);
+        out.stress.push(stress);
+        out.interface.push(iface);
+        out.jump.push(jump);
+        Ok(())
+    }
+}

@@ -1,0 +1,182 @@
+//! Step control over the time of a stage: the next target time, acceptance, cut-back and
+//! regrowth, landing exactly on the stage's end.
+//!
+//! A stage runs its own time t from 0 to `t_end`: a static stage's time is its load factor λ
+//! (`t_end` = 1), a dynamic stage's the time of the record (s). A step goes from the converged
+//! t to the target t + dt (the stage's end when that is within a relative 1e-12 of it); a
+//! failed step is retried with dt/2 (at most `max_cutbacks` times in a row), and dt doubles
+//! back towards `dt_max` after two successes in a row. Every decision rests on collective
+//! outcomes, so all ranks take the same path.
+
+use super::error::SolveError;
+use super::report::SolveReport;
+
+/// Where the stepping of a stage stands. Step checkpoints store `t`, `dt` and `streak`; `t_end`
+/// and `dt_max` follow from the scene.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StepControl {
+    /// Time reached in the stage (0 at its start).
+    pub t: f64,
+    /// The next increment of t (`dt_max`, or less after cut-backs).
+    pub dt: f64,
+    /// Converged steps since the increment last changed (it doubles after two).
+    pub streak: u32,
+    /// The stage's end time.
+    pub t_end: f64,
+    /// The largest increment (the stage's nominal step).
+    pub dt_max: f64,
+}
+
+impl StepControl {
+    /// The start of a stage of `n_steps` equal steps from 0 to `t_end`.
+    pub fn new(t_end: f64, n_steps: u32) -> Self {
+        let dt = t_end / n_steps.max(1) as f64;
+        StepControl {
+            t: 0.0,
+            dt,
+            streak: 0,
+            t_end,
+            dt_max: dt,
+        }
+    }
+
+    /// A stage resumed at `t` with increment `dt` and success count `streak` (a step
+    /// checkpoint), of `n_steps` nominal steps to `t_end`.
+    pub fn resumed(t: f64, dt: f64, streak: u32, t_end: f64, n_steps: u32) -> Self {
+        StepControl {
+            t,
+            dt,
+            streak,
+            ..StepControl::new(t_end, n_steps)
+        }
+    }
+
+    /// Snapping distance to the stage's end.
+    fn tolerance(&self) -> f64 {
+        1e-12 * self.t_end.abs().max(1.0)
+    }
+
+    /// Whether the stage's end is reached.
+    pub fn done(&self) -> bool {
+        self.t >= self.t_end - self.tolerance()
+    }
+
+    /// The target time of the next attempt: t + dt, or the stage's end when that is within
+    /// the snapping distance of it or beyond.
+    pub fn target(&self) -> f64 {
+        if self.t + self.dt > self.t_end - self.tolerance() {
+            self.t_end
+        } else {
+            self.t + self.dt
+        }
+    }
+
+    /// Records a converged step to `t1`; dt grows back after two successes in a row.
+    pub fn accept(&mut self, t1: f64) {
+        self.t = t1;
+        self.streak += 1;
+        if self.streak >= 2 && self.dt < self.dt_max {
+            self.dt = (2.0 * self.dt).min(self.dt_max);
+            self.streak = 0;
+        }
+    }
+
+    /// Halves dt after a failed attempt.
+    pub fn cut_back(&mut self) {
+        self.dt *= 0.5;
+        self.streak = 0;
+    }
+
+    /// One converged step: `attempt(t0, t1, report)` solves the step from the converged time
+    /// `t0` to `t1` (and leaves the problem at its committed state when it fails); a
+    /// recoverable failure is cut back, at most `max_cutbacks` times in a row. `monitor` prints
+    /// each cut-back (rank 0 only).
+    pub fn advance(
+        &mut self,
+        max_cutbacks: u32,
+        monitor: bool,
+        report: &mut SolveReport,
+        mut attempt: impl FnMut(f64, f64, &mut SolveReport) -> Result<(), SolveError>,
+    ) -> Result<(), SolveError> {
+        let mut cuts = 0u32;
+        loop {
+            let next = self.target();
+            let before = report.newton_iterations;
+            match attempt(self.t, next, report) {
+                Ok(()) => {
+                    report.steps += 1;
+                    report.newton_per_step.push(report.newton_iterations - before);
+                    self.accept(next);
+                    return Ok(());
+                }
+                Err(e) if e.recoverable() && cuts < max_cutbacks => {
+                    if monitor {
+                        eprintln!("step to λ = {next:.6} cut back: {e}");
+                    }
+                    cuts += 1;
+                    report.cutbacks += 1;
+                    self.cut_back();
+                }
+                Err(e) => {
+                    return Err(SolveError::Step {
+                        from: self.t,
+                        to: next,
+                        cutbacks: cuts,
+                        source: Box::new(e),
+                    });
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn four_steps_land_on_the_end() {
+        let mut s = StepControl::new(1.0, 4);
+        let mut times = Vec::new();
+        while !s.done() {
+            let t1 = s.target();
+            s.accept(t1);
+            times.push(t1);
+        }
+        assert_eq!(times, vec![0.25, 0.5, 0.75, 1.0]);
+    }
+
+    #[test]
+    fn a_cut_back_halves_and_two_successes_grow_back() {
+        let mut s = StepControl::new(2.0, 2);
+        s.cut_back();
+        assert_eq!(s.target(), 0.5);
+        s.accept(0.5);
+        assert_eq!(s.dt, 0.5);
+        s.accept(s.target());
+        assert_eq!((s.t, s.dt), (1.0, 1.0));
+        s.accept(s.target());
+        assert!(s.done());
+    }
+
+    #[test]
+    fn advance_cuts_back_recoverable_failures_only() {
+        let mut s = StepControl::new(1.0, 1);
+        let mut report = SolveReport::default();
+        let mut calls = 0;
+        let r = s.advance(3, false, &mut report, |_, t1, _| {
+            calls += 1;
+            if t1 > 0.3 {
+                Err(SolveError::Collective("too far".into()))
+            } else {
+                Ok(())
+            }
+        });
+        assert!(r.is_ok());
+        assert_eq!((calls, report.cutbacks, s.t), (3, 2, 0.25));
+        let r = s.advance(0, false, &mut report, |_, _, _| {
+            Err(SolveError::Collective("no".into()))
+        });
+        assert!(matches!(r, Err(SolveError::Step { cutbacks: 0, .. })));
+    }
+}

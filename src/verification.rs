@@ -1,0 +1,275 @@
+//! # Verification: the solver's checks, the material points, and the seed dam
+//!
+//! What has been checked, against what, and with which result. Every figure states where it
+//! came from: the test that prints it, or the commit and command of the run behind it (the
+//! figures and tables are kept in `scripts/figures/`). Run times and memory of the same runs are
+//! in [`crate::performance`]; how to run them in [`crate::guide`].
+//!
+//! Contents: [solver checks](#solver-checks) · [rank-count independence](#rank-count-independence) ·
+//! [restart](#restart-and-runs-in-parts) · [bad input](#bad-input) ·
+//! [material points](#material-points) · [the seed dam](#the-seed-dam-figs-711) ·
+//! [coarse mesh](#coarse-mesh-the-three-interface-models) ·
+//! [medium mesh](#medium-mesh-the-three-interface-models) ·
+//! [fine mesh](#fine-mesh-against-medium-hyperbolic-interface) ·
+//! [known defects](#known-defects)
+//!
+//! ## Solver checks
+//!
+//! Source: `tests/verification.rs`, which prints these figures
+//! (`cargo test --release --test verification -- --nocapture`; recorded at commit 60f8129).
+//!
+//! * **Patch test.** A distorted 3×3×3 hexahedral patch (nodes jittered by 20 % of the cell
+//!   size) reproduces a prescribed linear displacement field: largest error 6.8e-12 of the
+//!   displacement scale (bound 1e-10), uniform stress to 1e-9.
+//! * **Confined column under self-weight** (E = 50 MPa, ν = 0.3, H = 10 m): top settlement
+//!   ρgH²/(2M) to 1e-8, and the errors converge at the element's rates (2 in displacement, 1 in
+//!   stress):
+//!
+//!   | h (m) | L2 error u_z | rate | L2 error σ_zz | rate |
+//!   |---|---|---|---|---|
+//!   | 5.000 | 5.707e-2 | – | 2.500e-1 | – |
+//!   | 2.500 | 1.426e-2 | 2.00 | 1.250e-1 | 1.00 |
+//!   | 1.250 | 3.566e-3 | 2.00 | 6.250e-2 | 1.00 |
+//!   | 0.625 | 8.915e-4 | 2.00 | 3.125e-2 | 1.00 |
+//!
+//! * **Hydrostatic load** on a 1:1.4 face: the resultant of the nodal forces equals the water
+//!   thrust, with no force along the dam axis (bounds in the test).
+//!
+//! ## Rank-count independence
+//!
+//! * `tests/ranks.rs` (`cargo test --release --test ranks -- --nocapture`; recorded at commit
+//!   60f8129): a two-material dam scene on 1, 2 and 3 ranks gives result files with identical
+//!   layout, ids and topology; with the default solver (CG + GAMG, rtol 1e-10) displacements
+//!   differ by at most 3.3e-10 and stresses by 2.1e-10 of their maxima (bound 1e-8).
+//! * With `linear_solver: canonical_lu` the results are the same bit for bit at any rank count,
+//!   on an elasto-plastic path with cut-backs: the small generalized-plasticity dam of
+//!   `tests/cfrd_dam.rs` (72 result fields, 16 cut-backs, on 1 and 2 ranks; also 3 ranks by
+//!   hand), the canonical LU with MUMPS (`cfrd_dam::canonical_lu_with_mumps_is_rank_count_independent`)
+//!   and a 1-rank restart of a 2-rank checkpoint (`tests/restart.rs`).
+//! * The coarse seed dam, three interface models, 1 against 2 ranks (`cfrd compare`,
+//!   `scripts/figures/seed_static_compare.txt`; `scripts/make_seed_static_figures.sh` at commit
+//!   51547bd): largest relative difference 0 for all three models, every field of every stage,
+//!   and the same Newton iteration and cut-back counts (`seed_static_runs.csv`). The same holds
+//!   with one load step per stage, a much harder path with 29–30 cut-backs (hyperbolic and
+//!   Mohr–Coulomb checked, commit efe2165).
+//!
+//! ## Restart and runs in parts
+//!
+//! * `tests/restart.rs`: a 2-rank run stopped, and one really killed, then restarted from its
+//!   stage checkpoint ends bitwise where the uninterrupted run ends; checkpoints of another
+//!   scene or mesh are refused. `restart::a_run_killed_inside_a_stage_restarts_from_its_step_checkpoint`
+//!   does the same inside a stage with step checkpoints (GP column).
+//! * The coarse hyperbolic seed scene run in three parts of five stages
+//!   (`PART_STAGES=5 scripts/run_in_parts.sh`, commit 0c2ddda) gives the uninterrupted run's
+//!   fields bit for bit and its five figure tables byte for byte (`cfrd profiles` over the
+//!   parts); `cfrd_dam::profiles_of_a_run_in_parts_equal_the_uninterrupted_runs` checks the same
+//!   on the small dam.
+//! * Step checkpoints (commit 809a854): the coarse hyperbolic scene with `checkpoint: step`,
+//!   killed in slab stage III at λ = 0.875 and restarted there, ends bitwise where the
+//!   uninterrupted run with step checkpoints ends. Against a run with stage checkpoints, whose
+//!   preconditioner is renewed at other points, the results differ as any change of rounding
+//!   moves this path-dependent solve: largest relative difference 7.1e-3 over all fields, 5
+//!   cut-backs instead of 6, 496 Newton iterations instead of 491.
+//!
+//! ## Bad input
+//!
+//! `tests/bad_input.rs`: malformed YAML, unknown keys, a missing mesh, an inverted element, an
+//! unknown physical group, a wrong unit system, a modulus given in MPa, a negative modulus, an
+//! unknown node set and a bad PETSc option each exit with code 2 and a message naming the place,
+//! under `mpirun -n 2`, with no panic and no hang.
+//!
+//! ## Material points
+//!
+//! Every model of [`crate::material`] has tests for the spec's single-element checks (spec
+//! models §9), a finite-difference check of its tangent, bitwise purity, a serde round trip of
+//! its state, rotation invariance, and hard cases (zero and tensile normal stress, p → 0,
+//! reversal at η ≈ 0, increments 100× the usual, 10,000 cycles). The rockfill GP model's
+//! numerical tangent (`tangent: numerical`) is consistent where the continuum tangent is not:
+//! on a 10⁻³ strain step the continuum tangent is 94 % off, the numerical one 2e-10
+//! (`numerical_tangent_is_consistent_for_large_steps`, commit ed2fa73).
+//!
+//! The figures below are made by `scripts/make_point_figures.sh` (`cfrd point` on
+//! `inputs/point/`; commits 1a8c6df and 7fd6db4).
+//!
+//! **Drained triaxial compression of the rockfill** (spec models §1, seed Table 1) at σ3 = 300,
+//! 1000 and 2000 kPa, each from a virgin isotropic state at p0 = σ3: peaks 2116, 5929 and
+//! 11171 kPa.
+//!
+//! ![rockfill triaxial][triaxial]
+//!
+//! **Interface cross-check.** The seed calibrated all three interface models (spec models
+//! §2–§4) on the same direct shear tests. Under constant normal stress
+//! (`inputs/point/interface_crosscheck.yaml`; table `scripts/figures/interface_crosscheck_table.csv`,
+//! commit 7fd6db4), the shear displacement at 50 % and 95 % of the peak:
+//!
+//! | model | σn (kPa) | peak τ (kPa) | u at 50 % (mm) | u at 95 % (mm) |
+//! |---|---|---|---|---|
+//! | GP interface | 100 / 200 / 400 | 94.4 / 183.6 / 357.0 | 14.5 / 14.5 / 14.4 | 53.8 / 54.7 / 55.4 |
+//! | hyperbolic | 100 / 200 / 400 | 88.5 / 177.0 / 353.9 | 13.8 / 15.3 / 17.0 | 99.6 / 110.5 / 122.6 |
+//! | Mohr–Coulomb | 100 / 200 / 400 | 88.5 / 177.0 / 353.9 | 15.2 / 17.5 / 20.0 | 28.9 / 33.2 / 38.1 |
+//!
+//! ![interface cross-check][crosscheck]
+//!
+//! Read literally (D_s0, D_n0 and H0 per unit interface *strain*, t = 0.1 m), the GP interface is
+//! about ten times stiffer than the other two fits of the same tests (u at 50 % ≈ 1.45 mm). Read
+//! as stiffnesses per unit relative *displacement* (`stiffness_basis: displacement`, the
+//! default), its initial shear stiffness is 4.9 kPa/mm against 5.8 (hyperbolic) and 2.9
+//! (Mohr–Coulomb), and the curves above agree; the literal reading stays selectable
+//! (`stiffness_basis: strain`). The evidence and its cost (a softer normal response) are in
+//! [`crate::material::interface_gp`].
+//!
+//! ## The seed dam (Figs. 7–11)
+//!
+//! The seed paper (Liu, Kong & Zou 2015, *Chinese Journal of Geotechnical Engineering*
+//! 37(4):700–710) computes a 171 m CFRD (geometry: spec seismic §5.1) with GP rockfill (spec
+//! models §1) and compares three slab–cushion interface models (§2–§4) through construction
+//! (86 fill layers, the slab in three stages) and impoundment to el. 2840 m. cfrd runs the same
+//! dam from the generated seed scenes ([`crate::guide`]) at three resolutions:
+//!
+//! | mesh | elements | DOFs | fill layers | stages | slab panels |
+//! |---|---|---|---|---|---|
+//! | coarse | – | 3,360 | 8 | 14 (8 fill, 3 slab, 3 impoundment) | 30 m |
+//! | medium | 9,414 | 35,151 | 30 | 37 (30, 3, 4) | 15 m |
+//! | fine | 76,502 | 256,461 | 86 (as the seed) | 95 (86, 3, 6) | 15 m, 2 elements each |
+//!
+//! The seed's slab panels are 12–18 m wide. Each run writes its own Figs. 7–11 (dam
+//! displacement, slab stresses, slab deflection, the σn–τ path of interface element I-A at
+//! el. 2711 m, interface jumps and opening), kept as
+//! `scripts/figures/seed_{static,medium}_<model>_fig*.png` (coarse, medium) and
+//! `scripts/figures/seed_fine_hyperbolic_fig*.png`. Below: the slab at the central section,
+//! stresses in MPa (tension +) along the slope σ_s and the axis σ_a, deflection in cm (towards
+//! the dam +) ([`crate::profiles`] defines each quantity).
+//!
+//! ### Coarse mesh: the three interface models
+//!
+//! Source: `scripts/make_seed_static_figures.sh` at commit 51547bd (`seed_static_slab.png`,
+//! each run's `fig08_slab_stress.csv`); 1 and 2 ranks give the same values.
+//!
+//! ![slab stresses and deflection by interface model, coarse mesh][coarse]
+//!
+//! | elevation | state | σ_s hyperbolic / MC / GP | σ_a hyperbolic / MC / GP | deflection hyperbolic / MC / GP |
+//! |---|---|---|---|---|
+//! | 2695 m | end of construction | −2.81 / −3.05 / −3.31 | −0.97 / −1.04 / −1.12 | −0.3 / −0.3 / −0.6 |
+//! | 2723 m | end of construction | −1.68 / −1.73 / −2.20 | −1.13 / −1.20 / −1.29 | −0.1 / −0.1 / 0.3 |
+//! | 2723 m | after impoundment | −6.41 / −6.19 / −6.93 | −5.31 / −5.24 / −5.44 | 11.0 / 11.0 / 17.0 |
+//! | 2769 m | after impoundment | −3.63 / −3.53 / −3.60 | −5.25 / −4.95 / −5.26 | 10.3 / 10.3 / 16.4 |
+//! | 2817 m | after impoundment | −1.82 / −1.70 / −1.65 | −3.46 / −3.16 / −3.34 | 5.6 / 5.6 / 10.6 |
+//!
+//! The seed's static findings on this mesh (largest difference between two models over the
+//! section, as a fraction of the largest stress of that state, from `fig08_slab_stress.csv` of
+//! the runs of commit efe2165, which differ from the table above by at most 0.01 MPa):
+//!
+//! * End of construction, "the three models give the same slab stresses": hyperbolic and
+//!   Mohr–Coulomb agree (σ_s 7 %, σ_a 6 %); the GP interface gives more compression (σ_s 16 %,
+//!   σ_a 12 % against hyperbolic). Holds for two models of three.
+//! * After impoundment, "slope stresses agree, axial stresses differ; below 2760 m the GP
+//!   interface gives smaller axial stress, above it larger": the slope stresses agree
+//!   (hyperbolic–MC 3 %, GP–hyperbolic 8 %), but the axial stresses differ no more than they do
+//!   (hyperbolic–MC 6 %, GP–hyperbolic 2 %, GP–MC 7 %), and the GP interface's axial compression
+//!   is not smaller below 2760 m (−5.44 against −5.31 MPa at 2723 m). Not reproduced on this
+//!   mesh.
+//! * "Its slab deflection is slightly larger overall": holds, and by more than slightly
+//!   (6.6–18.2 cm against 3.1–11.8 cm).
+//!
+//! ### Medium mesh: the three interface models
+//!
+//! Source: `MEDIUM=1 scripts/make_seed_static_figures.sh` at commit 51547bd
+//! (`seed_medium_slab.png`, the runs' `fig08_slab_stress.csv`), 2 ranks.
+//!
+//! ![slab stresses and deflection by interface model, medium mesh][medium]
+//!
+//! | elevation | state | σ_s hyperbolic / MC / GP | σ_a hyperbolic / MC / GP | deflection hyperbolic / MC / GP |
+//! |---|---|---|---|---|
+//! | 2697 m | end of construction | −2.65 / −2.90 / −3.06 | −0.94 / −1.02 / −1.06 | −0.2 / −0.2 / −0.3 |
+//! | 2722 m | end of construction | −1.97 / −2.13 / −2.30 | −1.11 / −1.20 / −1.25 | −0.3 / −0.3 / −0.2 |
+//! | 2703 m | after impoundment | −8.11 / −7.93 / −8.41 | −5.60 / −5.60 / −5.11 | 10.8 / 10.8 / 16.8 |
+//! | 2722 m | after impoundment | −8.41 / −8.03 / −8.72 | −6.51 / −6.37 / −6.47 | 13.3 / 13.3 / 18.9 |
+//! | 2761 m | after impoundment | −3.93 / −3.93 / −3.94 | −5.70 / −5.34 / −5.75 | 11.2 / 11.2 / 17.0 |
+//! | 2814 m | after impoundment | −1.56 / −1.48 / −1.53 | −3.28 / −3.00 / −3.18 | 5.2 / 5.2 / 10.5 |
+//!
+//! The seed's findings on the medium mesh (as above; from the runs of commit 841f574, which
+//! differ from the table above by at most 0.01 MPa):
+//!
+//! * End of construction: the models agree more closely than on the coarse mesh: σ_s
+//!   hyperbolic–MC 8 %, GP–hyperbolic 13 %, GP–MC 5 %; σ_a 7 %, 11 %, 4 %. The GP interface is
+//!   still the most compressive. Roughly "the same", within 13 %.
+//! * After impoundment: the slope stresses agree (hyperbolic–MC 7 %, GP–hyperbolic 3 %, GP–MC
+//!   8 %); the axial ones differ more between GP and the others (GP–hyperbolic 9 %, GP–MC 11 %,
+//!   hyperbolic–MC 5 %). The GP interface gives smaller axial compression low on the slab
+//!   (−5.11 against −5.60 MPa at 2703 m, −2.47 against −2.82 at 2684 m) and slightly larger above
+//!   about 2722 m (−5.75 against −5.70 at 2761 m): the seed's pattern, with the crossing lower
+//!   than its 2760 m and a small difference above it. Holds for GP against hyperbolic;
+//!   Mohr–Coulomb's axial compression is 5–7 % smaller above 2730 m.
+//! * Deflection: hyperbolic and Mohr–Coulomb the same (1.8–13.7 cm), the GP interface larger
+//!   (1.4–20.0 cm, the largest 20.0 against 13.7 cm at 2734–2740 m): "slightly larger" holds in
+//!   sign, not in size, as on the coarse mesh.
+//!
+//! ### Fine mesh against medium: hyperbolic interface
+//!
+//! Source: the fine run of commit 6549cb1 (`scripts/run_in_parts.sh` on
+//! `inputs/scenes/seed_fine_hyperbolic.yaml`, 2 ranks, seven parts, then
+//! `FINE=DIR scripts/make_seed_static_figures.sh`: `seed_hyperbolic_meshes.png`,
+//! `seed_fine_hyperbolic_fig*.png`). Values interpolated linearly between each profile's points,
+//! so a medium value may differ from the medium table by a few hundredths.
+//!
+//! ![fine, medium and coarse mesh: hyperbolic slab stresses and deflection][meshes]
+//!
+//! | elevation | state | σ_s fine / medium | σ_a fine / medium | deflection fine / medium |
+//! |---|---|---|---|---|
+//! | 2697 m | end of construction | −2.67 / −2.65 | −0.92 / −0.94 | −0.2 / −0.2 |
+//! | 2722 m | end of construction | −1.96 / −1.96 | −1.12 / −1.11 | −0.2 / −0.3 |
+//! | 2703 m | after impoundment | −7.77 / −8.09 | −5.51 / −5.59 | 11.4 / 10.7 |
+//! | 2722 m | after impoundment | −8.25 / −8.39 | −6.39 / −6.51 | 13.7 / 13.3 |
+//! | 2761 m | after impoundment | −4.23 / −3.98 | −5.84 / −5.71 | 11.4 / 11.3 |
+//! | 2814 m | after impoundment | −1.50 / −1.56 | −3.23 / −3.28 | 5.2 / 5.2 |
+//!
+//! The medium mesh is close to converged for the slab: after impoundment the largest difference
+//! over the section is 8 % of the largest stress in σ_s (0.72 MPa, at the slab's foot, 2684 m,
+//! where the fine slab reaches 2 m lower), 2.5 % in σ_a and 7.6 % in deflection (the largest
+//! deflection 14.1 against 13.7 cm, both at 2734–2736 m; the largest slope compression −8.42
+//! against −8.66 MPa at 2714–2716 m). At the end of construction σ_s agrees to 1.8 %; σ_a (13 %)
+//! and the deflection (millimetres) differ at the joint between slab stages I and II
+//! (2736–2740 m), where a coarser slab smears the jump.
+//!
+//! Limits of this comparison: the interface-model comparison was not repeated on the fine mesh;
+//! and the fine run's figures hold only stages 88–95 (slab stages II and III and the
+//! impoundment), so the history of element I-A (seed Fig. 10) starts at stage 88: its first
+//! parts ran with a cfrd that wrote results only at the end of a run, so those stages exist
+//! only in their checkpoints (a run now publishes its results at every stage checkpoint).
+//!
+//! ## Known defects
+//!
+//! * On two random shear paths of the GP interface whose substeps all start just on the
+//!   unloading side, the default reversal rule (`reversal_branch: start`, spec (I18) read at the
+//!   substep's start, models §2.9) moves the reversal point along at every substep and the
+//!   substepping runs out of attempts (NMAX); the paths are kept as an ignored regression test.
+//!   `reversal_branch: trial` reads (I18) at the substep's trial point and follows both paths,
+//!   but changes the GP-interface results, so the seed scenes keep `start` until their figures
+//!   are redone ([`crate::material::interface_gp`]).
+//! * Dynamics is verified on closed forms (below), not yet on the seed dam's quake (seed
+//!   Figs. 12–20); there is no modal stage (SLEPc) and no HHT-α yet.
+//!
+//! ## Dynamics
+//!
+//! Commit 819350a, `cargo test --release --test dynamics -- --nocapture` and
+//! `cargo test --release --lib newmark`:
+//!
+//! | check (spec seismic §4) | measured | closed form |
+//! |---|---|---|
+//! | Newmark average acceleration, period elongation at Δt/T = 0.01 / 0.05 / 0.10 (item 3) | within 2·10⁻⁵ of | 1.00033 / 1.00817 / 1.03207 |
+//! | undamped linear oscillator, energy over 10,000 steps | constant to 10⁻¹⁰ | conserved |
+//! | 1D shear column (H 50 m, Vs 200 m/s, 20 hexahedra), ζ = 5 % Rayleigh at 1 and 5 Hz, harmonic base input at f₁ = 1 Hz: top/base amplitude, 1 and 2 ranks (item 4) | 12.773 (both) | 1/\|cos(k*H)\| = 12.763 |
+//! | same column, free vibration after a resonant burst: period of the first mode | 1.00134 s | 1.00158 s (T₁ with Newmark's elongation and √(1−ζ²)) |
+//! | same, logarithmic decrement over 7 cycles (item 8) | ζ = 0.04996 | 0.05 |
+//!
+//! The artificial accelerograms ([`crate::seismic`]) are checked in their own module: the design
+//! spectrum reproduces the table of spec seismic §1.4 to 10⁻³, the Nigam–Jennings response
+//! spectrum agrees with closed forms, and the seed record (`inputs/accel/seed_quake.yaml`) has
+//! PGA 3.000 / 3.000 / 2.000 m/s² and its 5 %-damped spectra within 5.9 / 5.1 / 5.4 % of the
+//! target at every control period (mean 1.45 / 1.28 / 1.36 %); see [`crate::seismic`] for the
+//! figure and the command.
+#![cfg_attr(doc, doc = embed_doc_image::embed_image!("triaxial", "scripts/figures/rockfill_gp_triaxial.png"))]
+#![cfg_attr(doc, doc = embed_doc_image::embed_image!("crosscheck", "scripts/figures/interface_crosscheck.png"))]
+#![cfg_attr(doc, doc = embed_doc_image::embed_image!("coarse", "scripts/figures/seed_static_slab.png"))]
+#![cfg_attr(doc, doc = embed_doc_image::embed_image!("medium", "scripts/figures/seed_medium_slab.png"))]
+#![cfg_attr(doc, doc = embed_doc_image::embed_image!("meshes", "scripts/figures/seed_hyperbolic_meshes.png"))]

@@ -1,0 +1,226 @@
+//! Dynamics against closed forms (issue 18, acceptance 2; spec seismic §4 items 3, 4, 8), run
+//! through `cfrd run` on 1 and 2 ranks.
+//!
+//! The 1D shear column on a rigid base: H = 50 m of elastic soil, Vs = 200 m/s
+//! (G = 8·10⁷ Pa, ρ = 2000 kg/m³), one 2.5 m hexahedron across and 20 up, every node held
+//! vertically and across the axis so that the column deforms in simple shear only. Its shear-beam
+//! frequencies are f_n = (2n − 1)·Vs/(4H): 1, 3, 5 Hz.
+//!
+//! * harmonic base acceleration at f₁ with Rayleigh damping ζ = 5 % at 1 and 5 Hz: the
+//!   steady amplitude of the top's absolute acceleration over the base's is |H(f₁)| =
+//!   1/|cos(k*·H)|, k* = ω/(Vs·√(1 + 2iζ)) (12.7 for ζ = 5 %), within 2 %;
+//! * free vibration after a resonant burst: the period of the first mode is
+//!   T₁·ω₁Δt/(2·atan(ω₁Δt/2)) (Newmark's elongation, spec seismic §3.4) and, with damping, the
+//!   logarithmic decrement gives ζ(f₁) = 5 % within 2 %.
+
+mod common;
+
+use common::{cfrd_mpi, read_f64, tempdir, text};
+use std::f64::consts::PI;
+use std::path::Path;
+
+const H: f64 = 50.0;
+const VS: f64 = 200.0;
+const F1: f64 = 1.0;
+
+/// The column scene: a static stage placing it, then a dynamic stage under `record.csv`.
+fn column_scene(dir: &Path, dynamic: &str) {
+    let scene = format!(
+        "name: shear_column\nunits: SI\n\
+         mesh:\n  box: {{ size: [2.5, 2.5, {H}], divisions: [1, 1, 20] }}\n\
+         materials:\n  soil: {{ model: elastic, young: 2.0e8, poisson: 0.25, density: 2000.0 }}\n\
+         blocks:\n  layer_1: {{ material: soil }}\n\
+         boundary:\n  - {{ set: zmin, fix: [x, y, z] }}\n  - {{ set: xmin, fix: [y, z] }}\n  - {{ set: xmax, fix: [y, z] }}\n\
+         solver: {{ petsc_options: '-ksp_type preonly -pc_type lu' }}\n\
+         stages:\n  - {{ name: place, activate: [layer_1] }}\n  - name: shake\n    dynamic: {dynamic}\n"
+    );
+    std::fs::write(dir.join("column.yaml"), scene).expect("scene written");
+}
+
+/// A record in x: `a(t)` sampled every `dt` for `duration` s.
+fn write_record(dir: &Path, dt: f64, duration: f64, a: impl Fn(f64) -> f64) {
+    let n = (duration / dt).round() as usize;
+    let mut csv = String::from("t,a_x,a_y,a_z\n");
+    for i in 0..=n {
+        let t = i as f64 * dt;
+        csv.push_str(&format!("{t},{},0,0\n", a(t)));
+    }
+    std::fs::write(dir.join("record.csv"), csv).expect("record written");
+}
+
+/// Top node's absolute x acceleration and x displacement at every written step of the shake
+/// stage, with the step times (s).
+struct TopHistory {
+    t: Vec<f64>,
+    acceleration: Vec<f64>,
+    displacement: Vec<f64>,
+}
+
+fn top_history(out: &Path, dt_out: f64) -> TopHistory {
+    let h5 = out.join("results.h5");
+    let file = hdf5::File::open(&h5).expect("results open");
+    let coords = read_f64(&h5, "/mesh/coordinates");
+    let top = (0..coords.len() / 3)
+        .max_by(|&a, &b| coords[3 * a + 2].total_cmp(&coords[3 * b + 2]))
+        .expect("nodes");
+    let mut steps: Vec<String> = file
+        .group("/steps")
+        .expect("steps")
+        .member_names()
+        .expect("names");
+    steps.sort();
+    let mut hist = TopHistory {
+        t: Vec::new(),
+        acceleration: Vec::new(),
+        displacement: Vec::new(),
+    };
+    for (i, s) in steps.iter().enumerate().skip(1) {
+        let acc = read_f64(&h5, &format!("/steps/{s}/acceleration"));
+        let u = read_f64(&h5, &format!("/steps/{s}/displacement"));
+        hist.t.push(i as f64 * dt_out);
+        hist.acceleration.push(acc[3 * top]);
+        hist.displacement.push(u[3 * top]);
+    }
+    hist
+}
+
+/// Amplitude of the harmonic of frequency `f` in the samples (least squares on sin and cos).
+fn amplitude(t: &[f64], y: &[f64], f: f64) -> f64 {
+    let w = 2.0 * PI * f;
+    let (mut ss, mut cc, mut sc, mut ys, mut yc) = (0.0, 0.0, 0.0, 0.0, 0.0);
+    for (&ti, &yi) in t.iter().zip(y) {
+        let (s, c) = (w * ti).sin_cos();
+        ss += s * s;
+        cc += c * c;
+        sc += s * c;
+        ys += yi * s;
+        yc += yi * c;
+    }
+    let det = ss * cc - sc * sc;
+    let a = (ys * cc - yc * sc) / det;
+    let b = (yc * ss - ys * sc) / det;
+    a.hypot(b)
+}
+
+/// |1/cos(k*H)| with k* = ω/(Vs·√(1 + 2iζ)) (spec seismic §4 item 4).
+fn transfer(f: f64, zeta: f64) -> f64 {
+    // √(1 + 2iζ) in polar form, then cos of the complex k*H
+    let (r, phi) = ((1.0 + 4.0 * zeta * zeta).sqrt().sqrt(), 0.5 * (2.0 * zeta).atan());
+    let k_mag = 2.0 * PI * f / VS / r;
+    let (re, im) = (k_mag * H * (-phi).cos(), k_mag * H * (-phi).sin());
+    let cos_re = re.cos() * im.cosh();
+    let cos_im = -re.sin() * im.sinh();
+    1.0 / cos_re.hypot(cos_im)
+}
+
+fn run(np: usize, dir: &Path, out: &str) {
+    let o = cfrd_mpi(np, dir, &["run", "column.yaml", "-o", out, "-q"]);
+    assert!(o.status.success(), "cfrd run failed: {}", text(&o));
+}
+
+#[test]
+fn shear_column_amplification_at_the_first_frequency_matches_the_closed_form() {
+    let dir = tempdir();
+    let (dt, duration, amp) = (0.01, 30.0, 0.1);
+    write_record(dir.path(), dt, duration, |t| amp * (2.0 * PI * F1 * t).sin());
+    column_scene(
+        dir.path(),
+        "{ record: record.csv, damping: { ratio: 0.05, frequencies: [1.0, 5.0] }, output_every: 5 }",
+    );
+    for np in [1, 2] {
+        let out = format!("out{np}");
+        run(np, dir.path(), &out);
+        let h = top_history(&dir.path().join(&out), 5.0 * dt);
+        // the last 5 cycles, where the transient has decayed to e^(−2π·0.05·25) < 0.04 %
+        let from = h.t.iter().position(|&t| t > duration - 5.0).expect("steps");
+        let a_top = amplitude(&h.t[from..], &h.acceleration[from..], F1);
+        let ratio = a_top / amp;
+        let want = transfer(F1, 0.05);
+        eprintln!("{np} rank(s): amplification {ratio:.4}, closed form {want:.4}");
+        assert!(
+            (ratio / want - 1.0).abs() < 0.02,
+            "{np} rank(s): amplification {ratio:.3}, closed form {want:.3}"
+        );
+    }
+}
+
+#[test]
+fn shear_column_free_vibration_period_and_rayleigh_decay() {
+    let dir = tempdir();
+    let (dt, duration) = (0.01, 12.0);
+    // two resonant cycles at f1, then free vibration
+    write_record(dir.path(), dt, duration, |t| {
+        if t < 2.0 {
+            (2.0 * PI * F1 * t).sin()
+        } else {
+            0.0
+        }
+    });
+    column_scene(
+        dir.path(),
+        "{ record: record.csv, damping: { ratio: 0.05, frequencies: [1.0, 5.0] }, output_every: 1 }",
+    );
+    run(1, dir.path(), "out");
+    let h = top_history(&dir.path().join("out"), dt);
+    // upward zero crossings and the following peaks of the top displacement after the burst
+    let free: Vec<(f64, f64)> =
+        h.t.iter()
+            .copied()
+            .zip(h.displacement.iter().copied())
+            .filter(|(t, _)| *t > 3.0)
+            .collect();
+    let mut crossings = Vec::new();
+    let mut peaks = Vec::new();
+    for w in free.windows(3) {
+        let ((t0, u0), (t1, u1), (_, u2)) = (w[0], w[1], w[2]);
+        if u0 < 0.0 && u1 >= 0.0 {
+            crossings.push(t0 + (t1 - t0) * (-u0) / (u1 - u0));
+        }
+        if u1 > u0 && u1 >= u2 && u1 > 0.0 {
+            peaks.push(u1);
+        }
+    }
+    let n = crossings.len() - 1;
+    let period = (crossings[n] - crossings[0]) / n as f64;
+    // the damped first mode of the discrete column: consistent-mass FE frequency within 0.1 %
+    // of the shear beam's, Newmark's elongation at Δt/T = 0.01, and √(1 − ζ²)
+    let wdt = 2.0 * PI * F1 * dt;
+    let want = wdt / (2.0 * (wdt / 2.0).atan()) / (1.0 - 0.05f64.powi(2)).sqrt();
+    eprintln!("period {period:.5} s (expected {want:.5} s)");
+    assert!(
+        (period / want - 1.0).abs() < 1e-3,
+        "period {period:.5} s, expected {want:.5} s"
+    );
+    let m = peaks.len() - 1;
+    let delta = (peaks[0] / peaks[m]).ln() / m as f64;
+    let zeta = delta / (4.0 * PI * PI + delta * delta).sqrt();
+    eprintln!("damping ratio from the decay {zeta:.5} over {m} cycles");
+    assert!(
+        (zeta / 0.05 - 1.0).abs() < 0.02,
+        "damping ratio from the decay {zeta:.4}, want 0.05"
+    );
+}
+
+/// The committed seed record is what `cfrd accel` makes of the committed spec, byte for byte
+/// (the seed quake scenes read it; a change of the generator must regenerate it).
+#[test]
+fn the_committed_seed_record_is_reproduced_by_cfrd_accel() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let dir = tempdir();
+    let o = common::cfrd(
+        root,
+        &[
+            "accel",
+            "inputs/accel/seed_quake.yaml",
+            "-o",
+            dir.path().to_str().unwrap(),
+        ],
+    );
+    assert!(o.status.success(), "cfrd accel failed: {}", text(&o));
+    let made = std::fs::read(dir.path().join("seed_quake.csv")).expect("record written");
+    let committed = std::fs::read(root.join("inputs/accel/seed_quake.csv")).expect("committed record");
+    assert!(
+        made == committed,
+        "inputs/accel/seed_quake.csv differs from a fresh `cfrd accel` run"
+    );
+}
