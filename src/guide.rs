@@ -248,6 +248,7 @@
 //! | `cfrd run ... --monitor` | prints every Newton residual and cut-back, as `solver.monitor` does, without changing the scene |
 //! | `cfrd run ... --integration-tol-ratio R` | caps the GP substepping tolerance at R·newton_tol, as `solver.integration_tol_ratio` does, without changing the scene |
 //! | `cfrd run ... -q` | prints nothing but errors |
+//! | `cfrd run ... --overwrite` | writes into a directory that holds another run's `results.h5`, `checkpoint.h5` or `summary.json` (its old checkpoint is removed first); without it such a directory is refused (exit code 2) unless the run restarts from that directory's own checkpoint. Temporary files of killed runs found there (`.results.h5.partial-<pid>` and the like) are named and removed |
 //! | `cfrd check SCENE` | parses, validates and cross-checks the scene and its mesh without solving; prints the counts of nodes, elements, blocks, fixed DOFs and stages |
 //! | `cfrd schema` | prints the JSON Schema of the scene format |
 //! | `cfrd partition SCENE -n N -o FILE` | METIS partition for N ranks, written to `FILE`; the scene then names it in `partition:` |
@@ -346,4 +347,13 @@
 //! | 2 | bad input: YAML, mesh, parameters, options, a checkpoint of another scene; the message names the YAML path, file line or element id |
 //! | 3 | solver failure (a load step that still fails after its cut-backs; also a failure to write the outputs); `cfrd bench materials` when a model failed |
 //! | 101 | a bug: the panic hook aborts every rank, so a parallel job never hangs |
+//!
+//! Hostile input is refused with exit code 2 before memory is reserved for it or a solve starts:
+//! every count a mesh file announces is bounded by what a file of its size can hold; scene, mesh
+//! and partition files must be regular files (scenes at most 16 MiB, meshes 4 GiB); a generated
+//! mesh has at most 2^25 nodes, `mesh.cfrd.impoundment_stages` is at most 10 000 and a stage at
+//! most 10^6 load steps; YAML may nest at most 64 brackets deep and 256 columns of indentation;
+//! a key given twice in a mapping (a block, a material) is an error naming both lines; every
+//! body of the elements placed by a stage must be held against all six rigid-body motions by its
+//! fixed displacements (the message names the free ones).
 #![cfg_attr(doc, doc = embed_doc_image::embed_image!("fig08", "scripts/figures/seed_static_gp_interface_fig08_slab_stress.png"))]

@@ -10,6 +10,7 @@
 //! | [`conventions`] | units, axes, signs, Voigt order, frames (read first) |
 //! | [`tensor`] | Voigt stress/strain/tangent newtypes |
 //! | [`material`] | constitutive library: elastic, rockfill GP, interface laws, joints |
+//! | [`input`] | bounded reading of input files (regular files only, size caps) |
 //! | [`mesh`] | global mesh, Gmsh reader, validation, generators |
 //! | [`element`] | element kernels (hex8) |
 //! | [`scene`] | the YAML scene: schema, validation, physics terms |
@@ -32,6 +33,7 @@ pub mod conventions;
 pub mod element;
 pub mod error;
 pub mod guide;
+pub mod input;
 #[cfg(feature = "native")]
 pub mod io;
 #[cfg(feature = "native")]

@@ -76,6 +76,11 @@ enum Command {
         /// the integration noise can be continued from its checkpoint with, e.g., R = 0.1.
         #[arg(long, value_name = "R")]
         integration_tol_ratio: Option<f64>,
+        /// Write into an output directory that holds another run's `results.h5`,
+        /// `checkpoint.h5` or `summary.json` (its old checkpoint is removed first); without it
+        /// such a directory is refused unless the run restarts from its checkpoint.
+        #[arg(long)]
+        overwrite: bool,
     },
     /// Validate a scene (YAML, mesh, cross-references) without solving.
     Check {
@@ -108,8 +113,8 @@ enum Command {
         /// Second results file or run directory; steps are matched by stage and time, so a run
         /// restarted from a checkpoint compares with the uninterrupted one.
         b: PathBuf,
-        /// Largest accepted relative difference (max |a − b| / max |a|).
-        #[arg(long)]
+        /// Largest accepted relative difference (max |a − b| / max |a|): a finite number ≥ 0.
+        #[arg(long, value_parser = parse_tolerance)]
         tolerance: Option<f64>,
     },
     /// Overlay the slab profiles (seed Figs. 8, 9) of several runs with `output.profiles`, e.g.
@@ -186,8 +191,19 @@ fn parse_checkpoint(s: &str) -> Result<cfrd::scene::schema::CheckpointMode, Stri
     }
 }
 
+/// Parses `--tolerance`: a finite number ≥ 0.
+fn parse_tolerance(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(t) if t.is_finite() && t >= 0.0 => Ok(t),
+        _ => Err(format!(
+            "'{s}': expected a finite relative difference ≥ 0, e.g. 1e-8"
+        )),
+    }
+}
+
 /// Splits PETSc options (`-word` with more than one letter after a single dash, plus its value
-/// when the next argument is not an option and not a YAML file) from cfrd's own arguments.
+/// when the next argument is a number, negative ones included, or is not an option and not a
+/// YAML file) from cfrd's own arguments.
 fn split_petsc_options(args: Vec<String>) -> (Vec<String>, Vec<String>) {
     let is_petsc = |a: &str| {
         a.len() > 2 && a.starts_with('-') && !a.starts_with("--") && a.as_bytes()[1].is_ascii_alphabetic()
@@ -199,7 +215,8 @@ fn split_petsc_options(args: Vec<String>) -> (Vec<String>, Vec<String>) {
             petsc.push(a);
             if let Some(next) = it.peek() {
                 let yaml = next.ends_with(".yaml") || next.ends_with(".yml");
-                if !next.starts_with('-') && !yaml {
+                let number = next.parse::<f64>().is_ok();
+                if number || (!next.starts_with('-') && !yaml) {
                     petsc.push(it.next().expect("peeked"));
                 }
             }
@@ -365,7 +382,10 @@ fn main() -> ExitCode {
             checkpoint,
             monitor,
             integration_tol_ratio,
+            overwrite,
         } => with_mpi(|world| {
+            let dir = cfrd::io::outdir::run_output_dir(out.as_deref(), scene.as_deref());
+            preflight_run(world, dir.as_deref(), restart.as_deref(), overwrite, quiet)?;
             let opts = cfrd::run::RunOptions {
                 scene,
                 out_dir: out,
@@ -381,6 +401,29 @@ fn main() -> ExitCode {
             Ok(())
         }),
     }
+}
+
+/// Checks before `cfrd run` starts, on every rank alike: the `--restart` file is a readable
+/// regular file, and the output directory `dir` (when known) holds no other run's files
+/// ([`cfrd::io::outdir::prepare_output_dir`]). Collective.
+fn preflight_run(
+    world: &mpi::topology::SimpleCommunicator,
+    dir: Option<&std::path::Path>,
+    restart: Option<&std::path::Path>,
+    overwrite: bool,
+    quiet: bool,
+) -> Result<(), cfrd::run::RunFailure> {
+    let input = |message: String| cfrd::run::RunFailure {
+        code: cfrd::parallel::EXIT_INPUT,
+        message,
+    };
+    let checked = restart.map_or(Ok(()), cfrd::io::preflight::check_restart_file);
+    cfrd::parallel::any_error(world, checked).map_err(input)?;
+    if let Some(dir) = dir {
+        cfrd::io::outdir::prepare_output_dir_collective(world, dir, restart, overwrite, quiet)
+            .map_err(input)?;
+    }
+    Ok(())
 }
 
 /// `cfrd profiles`: the profile tables and plots of the runs `runs` (results files or run

@@ -29,6 +29,24 @@ fn msh(nodes: [u32; 8]) -> String {
     )
 }
 
+/// A mesh file of `inputs/meshes` with the (unique) line `old` replaced by `new`.
+fn mesh_with(file: &str, old: &str, new: &str) -> String {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("inputs/meshes")
+        .join(file);
+    let text = std::fs::read_to_string(path).unwrap();
+    assert_eq!(
+        text.lines().filter(|l| l.trim() == old).count(),
+        1,
+        "{file}: '{old}'"
+    );
+    let lines: Vec<&str> = text
+        .lines()
+        .map(|l| if l.trim() == old { new } else { l })
+        .collect();
+    lines.join("\n")
+}
+
 /// One bad-input case: name, scene text, extra files (name, body), text the message must contain.
 type Case = (&'static str, String, Vec<(&'static str, String)>, &'static str);
 
@@ -105,6 +123,120 @@ fn cases() -> Vec<Case> {
             GOOD.replace("loads:", "solver: { integration_tol_ratio: 2.0 }\nloads:"),
             vec![],
             "solver.integration_tol_ratio",
+        ),
+        (
+            "physical-tag count 2^64-1 of an MSH 4.1 entity",
+            gmsh_scene("tags.msh", "left"),
+            vec![(
+                "tags.msh",
+                mesh_with(
+                    "two_hex_v41.msh",
+                    "2 1 0 0 2 1 1 1 7 0",
+                    "2 1 0 0 2 1 1 18446744073709551615 7 0",
+                ),
+            )],
+            "tags.msh:22",
+        ),
+        (
+            "MSH 4.1 node block of 10^12 nodes",
+            gmsh_scene("nodes.msh", "left"),
+            vec![("nodes.msh", mesh_with("two_hex_v41.msh", "3 1 0 12", "3 1 0 1000000000000"))],
+            "node block header: nodes: the count 1000000000000",
+        ),
+        (
+            "MSH 4.1 $Nodes header of 10^12 nodes",
+            gmsh_scene("header.msh", "left"),
+            vec![("header.msh", mesh_with("two_hex_v41.msh", "1 12 1 12", "1 1000000000000 1 12"))],
+            "$Nodes header: nodes: the count 1000000000000",
+        ),
+        (
+            "MSH 2.2 $Elements count of 10^12",
+            gmsh_scene("elements.msh", "left"),
+            vec![("elements.msh", mesh_with("two_hex_v22.msh", "9", "1000000000000"))],
+            "$Elements count: the count 1000000000000",
+        ),
+        (
+            "MSH 2.2 $Nodes count of 10^12",
+            gmsh_scene("nodes22.msh", "left"),
+            vec![("nodes22.msh", mesh_with("two_hex_v22.msh", "12", "1000000000000"))],
+            "$Nodes count: the count 1000000000000",
+        ),
+        (
+            "infinite coordinate",
+            gmsh_scene("inf.msh", "core"),
+            vec![("inf.msh", msh([1, 2, 3, 4, 5, 6, 7, 8]).replace("5 0 0 1\n", "5 0 0 inf\n"))],
+            "node 5: coordinate z = 'inf'",
+        ),
+        (
+            "negative node id",
+            gmsh_scene("neg.msh", "core"),
+            vec![("neg.msh", msh([1, 2, 3, 4, 5, 6, 7, 8]).replace("5 6 7 8\n$End", "5 6 7 -3\n$End"))],
+            "node id -3",
+        ),
+        (
+            "mesh file is a device",
+            gmsh_scene("/dev/zero", "core"),
+            vec![],
+            "/dev/zero: cannot read mesh file: not a regular file",
+        ),
+        (
+            "impoundment stages 2^32",
+            "name: c\nunits: SI\nmesh: { cfrd: { fill_layers: 8, impoundment_stages: 4294967296 } }\n\
+             materials: {}\nblocks: {}\n"
+                .to_string(),
+            vec![],
+            "mesh.cfrd.impoundment_stages: 4294967296",
+        ),
+        (
+            "block named twice",
+            GOOD.replace("  layer_1: { material: soil }\n", "  layer_1: { material: soil }\n  layer_1: { material: rock }\n"),
+            vec![],
+            "blocks: the key 'layer_1' is given twice, on lines 8 and 9",
+        ),
+        (
+            "material named twice",
+            GOOD.replace("blocks:", "  soil: { model: elastic, young: 5.0e9, poisson: 0.3, density: 2000.0 }\nblocks:"),
+            vec![],
+            "materials: the key 'soil' is given twice, on lines 6 and 7",
+        ),
+        (
+            "water level nan",
+            GOOD.replace("loads:\n", "loads:\n  hydrostatic: [{ faces: zmax, level: .nan }]\n"),
+            vec![],
+            "loads.hydrostatic[0].level: NaN m",
+        ),
+        (
+            "stage pressure inf",
+            GOOD.replace(
+                "loads:",
+                "stages: [{ name: s, activate: [layer_1], loads: { pressure: [{ faces: zmax, value: -.inf }] } }]\nloads:",
+            ),
+            vec![],
+            "stages[0].loads.pressure[0].value: -inf Pa",
+        ),
+        (
+            "gravity 1e300",
+            GOOD.replace("g: [0.0, 0.0, -9.81]", "g: [0.0, 0.0, 1.0e300]"),
+            vec![],
+            "[0.0, 0.0, 1e300] m/s²",
+        ),
+        (
+            "no boundary",
+            GOOD.replace("  - { set: zmin, fix: [x, y, z] }\n", "").replace("boundary:", "boundary: []"),
+            vec![],
+            "not restrained against rigid-body motion: every translation and rotation",
+        ),
+        (
+            "base on rollers",
+            GOOD.replace("fix: [x, y, z]", "fix: [z]"),
+            vec![],
+            "translation along x, translation along y, rotation about an axis along z free",
+        ),
+        (
+            "deep nesting",
+            format!("name: {}\n", "[".repeat(100_000)),
+            vec![],
+            "brackets nested more than 64 deep",
         ),
         (
             "bad petsc option",
@@ -191,6 +323,83 @@ fn a_bad_integration_tolerance_ratio_on_the_command_line_exits_2() {
     assert!(!dir.path().join("out/results.h5").exists());
 }
 
+/// `cfrd compare --tolerance` takes a finite number ≥ 0 only.
+#[test]
+fn a_compare_tolerance_that_is_not_a_finite_non_negative_number_exits_2() {
+    let dir = tempdir();
+    for bad in ["nan", "-1e-8", "inf"] {
+        let o = cfrd(dir.path(), &["compare", "a", "b", &format!("--tolerance={bad}")]);
+        let msg = text(&o);
+        assert_eq!(o.status.code(), Some(2), "{bad}: {msg}");
+        assert!(
+            msg.contains("--tolerance") && msg.contains("finite"),
+            "{bad}: {msg}"
+        );
+    }
+}
+
+/// Negative numbers after a PETSc option are its value, not options of cfrd's.
+#[test]
+fn negative_petsc_option_values_reach_petsc() {
+    let dir = tempdir();
+    std::fs::write(dir.path().join("scene.yaml"), GOOD).unwrap();
+    for (out, value) in [("a", "-5"), ("b", "-1e-8")] {
+        let o = cfrd(
+            dir.path(),
+            &["run", "scene.yaml", "-o", out, "-q", "-ksp_rtol", value],
+        );
+        assert!(o.status.success(), "-ksp_rtol {value}: {}", text(&o));
+    }
+}
+
+/// A directory given to `--restart` is one clear line, not the MPI-IO error stack.
+#[test]
+fn a_directory_given_to_restart_exits_2_with_one_line() {
+    let dir = tempdir();
+    std::fs::write(dir.path().join("scene.yaml"), GOOD).unwrap();
+    std::fs::create_dir(dir.path().join("ckpt")).unwrap();
+    let o = cfrd(
+        dir.path(),
+        &["run", "scene.yaml", "-o", "out", "--restart", "ckpt"],
+    );
+    let msg = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{msg}");
+    assert!(
+        msg.contains("error: restart from ckpt: not a checkpoint file (a directory)"),
+        "{msg}"
+    );
+    assert_eq!(msg.lines().count(), 1, "{msg}");
+}
+
+/// A run does not write over another run's files without `--overwrite`; with it, the old
+/// checkpoint goes first; temporary files of killed runs are named and removed.
+#[test]
+fn an_output_directory_of_another_run_is_refused_without_overwrite() {
+    let dir = tempdir();
+    let d = dir.path();
+    std::fs::write(d.join("scene.yaml"), GOOD).unwrap();
+    let o = cfrd_mpi(2, d, &["run", "scene.yaml", "-o", "out", "-q"]);
+    assert!(o.status.success(), "{}", text(&o));
+    let before = std::fs::read(d.join("out/results.h5")).unwrap();
+    let o = cfrd_mpi(2, d, &["run", "scene.yaml", "-o", "out", "-q"]);
+    let msg = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{msg}");
+    assert!(
+        msg.contains("results.h5, summary.json") && msg.contains("--overwrite"),
+        "{msg}"
+    );
+    assert_eq!(std::fs::read(d.join("out/results.h5")).unwrap(), before);
+    // a checkpoint of another scene and a killed run's temporary file
+    std::fs::write(d.join("out/checkpoint.h5"), b"another scene").unwrap();
+    let stale = format!(".results.h5.partial-{}", u32::MAX - 1);
+    std::fs::write(d.join("out").join(&stale), b"").unwrap();
+    let o = cfrd_mpi(2, d, &["run", "scene.yaml", "-o", "out", "--overwrite"]);
+    let msg = text(&o);
+    assert!(o.status.success(), "{msg}");
+    assert!(msg.contains(&stale) && msg.contains("checkpoint.h5"), "{msg}");
+    assert!(!d.join("out/checkpoint.h5").exists() && !d.join("out").join(&stale).exists());
+}
+
 #[test]
 fn check_accepts_a_good_scene_and_schema_is_json() {
     let dir = tempdir();
@@ -202,6 +411,10 @@ fn check_accepts_a_good_scene_and_schema_is_json() {
         "{}",
         text(&o)
     );
+    // a byte order mark at the start is dropped
+    std::fs::write(dir.path().join("bom.yaml"), format!("\u{feff}{GOOD}")).unwrap();
+    let o = cfrd(dir.path(), &["check", "bom.yaml"]);
+    assert!(o.status.success(), "{}", text(&o));
     let o = cfrd(dir.path(), &["schema"]);
     assert!(o.status.success());
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("schema is JSON");

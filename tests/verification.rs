@@ -43,8 +43,11 @@ fn patch_test(petsc: &Petsc) {
     let text = format!(
         "name: patch\nunits: SI\nmesh:\n  box: {{ size: [1.0, 2.0, 1.5], divisions: [3, 3, 3], jitter: 0.2, seed: 7 }}\n{ELASTIC}\
          blocks: {{ layer_1: {{ material: soil }} }}\n\
+         boundary: [{{ set: zmin, fix: [x, y, z] }}]\n\
          solver: {{ petsc_options: '-ksp_type preonly -pc_type lu' }}\n"
     );
+    // the scene is held by its base (a body free to move is refused); the test then fixes
+    // every boundary node to the exact displacement
     let mut scene = Scene::from_str(&text, "patch", Path::new(".")).expect("scene");
     let a = [1e-3, -2e-3, 5e-4];
     let g = [[1e-3, 2e-4, -3e-4], [5e-4, -8e-4, 1e-4], [-2e-4, 3e-4, 6e-4]];

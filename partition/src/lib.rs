@@ -344,7 +344,7 @@ impl PartitionFile {
         nparts: usize,
     ) -> Result<Vec<u32>, PartitionError> {
         let p = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|source| PartitionError::Io {
+        let text = read_bounded(path, cells.len()).map_err(|source| PartitionError::Io {
             path: p.clone(),
             source,
         })?;
@@ -377,9 +377,37 @@ impl PartitionFile {
     }
 }
 
+/// Reads the partition file of a mesh of `n_cells` cells: a regular file of at most
+/// 4 KiB + 32 bytes per cell (a part number and its separators take at most 11), so a device
+/// or a FIFO is refused instead of being read without end.
+fn read_bounded(path: &std::path::Path, n_cells: usize) -> Result<String, std::io::Error> {
+    use std::io::Read;
+    let file = std::fs::File::open(path)?;
+    if !file.metadata()?.is_file() {
+        return Err(std::io::Error::other("not a regular file"));
+    }
+    let cap = 4096 + 32 * n_cells as u64;
+    let mut text = String::new();
+    file.take(cap + 1).read_to_string(&mut text)?;
+    if text.len() as u64 > cap {
+        return Err(std::io::Error::other(format!(
+            "larger than {cap} bytes, the most a partition of {n_cells} cells takes"
+        )));
+    }
+    Ok(text)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_device_is_not_read_as_a_partition_file() {
+        let (cells, nn) = Cells::hex_row(2);
+        let err =
+            PartitionFile::read(std::path::Path::new("/dev/zero"), &cells, nn, 1).expect_err("a device");
+        assert!(err.to_string().contains("not a regular file"), "{err}");
+    }
 
     #[test]
     fn ownership_is_consistent_and_numbering_contiguous() {

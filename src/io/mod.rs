@@ -9,6 +9,8 @@
 //! | [`summary`] | [`RunSummary`] JSON, [`PhaseTimer`], peak memory |
 //! | [`error`] | [`IoError`] and the rule that makes every error collective |
 //! | [`compare`] | `cfrd compare`: field differences between two results files |
+//! | [`outdir`] | `cfrd run`'s output directory: another run's files, stale temporaries |
+//! | [`preflight`] | checks of `cfrd run`'s file arguments before HDF5 opens them |
 //!
 //! # The results file (format `cfrd-results`, version 1)
 //!
@@ -103,6 +105,8 @@ pub mod checkpoint;
 pub mod compare;
 pub mod error;
 pub mod hdf5_out;
+pub mod outdir;
+pub mod preflight;
 pub mod redistribute;
 pub mod summary;
 pub mod xdmf;

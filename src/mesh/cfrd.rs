@@ -89,6 +89,9 @@ use crate::mesh::error::MeshError;
 use crate::mesh::{Block, Element, ElementKind, Face, Mesh};
 use std::collections::BTreeMap;
 
+/// Most impoundment stages of a generated schedule (`mesh.cfrd.impoundment_stages`).
+pub const MAX_IMPOUNDMENT_STAGES: usize = 10_000;
+
 /// Local face of the slab hex that is its outer (upstream) face (`HEX8_FACES[2]`, ξ = −1).
 const SLAB_OUTER_FACE: u8 = 2;
 
@@ -136,15 +139,16 @@ pub struct CfrdSpec {
     /// Elements along the axis per slab panel (≥ 1).
     pub elements_per_panel: usize,
     /// Fill layers = construction steps = element layers over the height (≥ the number of
-    /// elevation segments, 4 for the seed). Seed: 86.
+    /// elevation segments, 4 for the seed; at most 100 000). Seed: 86. The whole mesh may have at
+    /// most [`super::generate::MAX_GENERATED_NODES`] nodes.
     pub fill_layers: usize,
     /// Elements across the main rockfill zone (≥ 1).
     pub rockfill_elements: usize,
     /// Final reservoir level (m, elevation), above the base and at most the crest. Seed: 2840.
     pub impoundment_level: f64,
-    /// Number of impoundment stages (≥ 1).
+    /// Number of impoundment stages, 1 to [`MAX_IMPOUNDMENT_STAGES`].
     pub impoundment_stages: usize,
-    /// Load steps of each fill-layer stage (≥ 1); default: `solver.load_steps`, as for the other
+    /// Load steps of each fill-layer stage (1 to `scene::ranges::MAX_LOAD_STEPS`); default: `solver.load_steps`, as for the other
     /// stages. The seed places its 86 layers (about 2 m each) in one step each. Fewer steps are
     /// not cheaper with the GP rockfill: on the fine seed mesh two steps per layer took about
     /// twice as long as eight (`scripts/make_seed_scenes.sh`), as a new layer starts unconfined.
@@ -299,11 +303,21 @@ impl CfrdSpec {
         if self.rockfill_elements == 0 {
             return Err(invalid("rockfill_elements", "must be at least 1".into()));
         }
-        if self.impoundment_stages == 0 {
-            return Err(invalid("impoundment_stages", "must be at least 1".into()));
+        if !(1..=MAX_IMPOUNDMENT_STAGES).contains(&self.impoundment_stages) {
+            return Err(invalid(
+                "impoundment_stages",
+                format!(
+                    "{} must lie in [1, {MAX_IMPOUNDMENT_STAGES}]",
+                    self.impoundment_stages
+                ),
+            ));
         }
-        if self.fill_load_steps == Some(0) {
-            return Err(invalid("fill_load_steps", "must be at least 1".into()));
+        let max_steps = crate::scene::ranges::MAX_LOAD_STEPS;
+        if let Some(n) = self.fill_load_steps.filter(|n| !(1..=max_steps).contains(n)) {
+            return Err(invalid(
+                "fill_load_steps",
+                format!("{n} must lie in [1, {max_steps}]"),
+            ));
         }
         if !(self.water_unit_weight.is_finite()
             && self.water_unit_weight > 100.0
@@ -437,12 +451,17 @@ impl CfrdSpec {
             n_central,
             ((fan_right / w).round() as usize).max(1),
         ];
-        let ny = panels.iter().sum::<usize>() * self.elements_per_panel;
-        let nodes = (self.rockfill_elements as u128 + 3) * (ny as u128 + 1) * (nz as u128 + 1) * 2;
-        if nodes > u32::MAX as u128 / 2 {
+        let ny = panels.iter().map(|&p| p as u128).sum::<u128>() * self.elements_per_panel as u128;
+        let nodes = (self.rockfill_elements as u128 + 3) * (ny + 1) * (nz as u128 + 1) * 2;
+        let most = super::generate::MAX_GENERATED_NODES;
+        if nodes > most as u128 {
             return Err(invalid(
                 "fill_layers",
-                format!("the mesh would have about {nodes} nodes (more than 2^31)"),
+                format!(
+                    "with rockfill_elements {}, elements_per_panel {} and panel_width {} m the mesh \
+                     would have about {nodes} nodes, more than the limit of {most}",
+                    self.rockfill_elements, self.elements_per_panel, self.panel_width
+                ),
             ));
         }
         Ok(Layout {

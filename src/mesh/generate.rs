@@ -10,6 +10,10 @@ use crate::mesh::error::MeshError;
 use crate::mesh::{Block, Element, ElementKind, Face, Mesh};
 use std::collections::BTreeMap;
 
+/// Most nodes of a generated mesh (`mesh.box`, `mesh.dam`, `mesh.cfrd`): 2^25, about 10^8
+/// DOFs, checked before any memory is reserved.
+pub const MAX_GENERATED_NODES: usize = 1 << 25;
+
 /// Local face numbers (`crate::element::hex8::HEX8_FACES`) of the faces normal to the axes.
 const FACE_ZMIN: u8 = 0;
 const FACE_YMIN: u8 = 1;
@@ -26,7 +30,7 @@ pub struct BoxSpec {
     pub origin: [f64; 3],
     /// Edge lengths along x, y, z (m).
     pub size: [f64; 3],
-    /// Number of elements along x, y, z.
+    /// Number of elements along x, y, z; the mesh may have at most [`MAX_GENERATED_NODES`] nodes.
     pub divisions: [usize; 3],
     /// Number of horizontal element blocks `layer_1 … layer_k` (bottom to top), `1 ≤ k ≤ nz`.
     pub layers: usize,
@@ -79,7 +83,8 @@ pub struct DamSpec {
     pub downstream_slope: f64,
     /// Extrusion length along the dam axis `L` (m).
     pub length: f64,
-    /// Elements across the section (x), along the axis (y) and over the height (z).
+    /// Elements across the section (x), along the axis (y) and over the height (z); the mesh may
+    /// have at most [`MAX_GENERATED_NODES`] nodes.
     pub divisions: [usize; 3],
     /// Number of horizontal element blocks `layer_1 … layer_k`, `1 ≤ k ≤ nz` (default 1).
     #[serde(default = "one_layer")]
@@ -211,10 +216,10 @@ fn check_divisions(divisions: [usize; 3], layers: usize) -> Result<(), MeshError
         ));
     }
     let nodes = divisions.iter().map(|&n| n as u128 + 1).product::<u128>();
-    if nodes > u32::MAX as u128 {
+    if nodes > MAX_GENERATED_NODES as u128 {
         return Err(invalid(
             "divisions",
-            format!("{divisions:?} gives {nodes} nodes (more than 2^32)"),
+            format!("{divisions:?} gives {nodes} nodes, more than the limit of {MAX_GENERATED_NODES}"),
         ));
     }
     Ok(())

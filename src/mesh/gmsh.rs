@@ -60,12 +60,15 @@ pub fn gmsh_element_type(gmsh_type: u32) -> Option<(u8, usize, &'static str)> {
     })
 }
 
-/// Reads a Gmsh ASCII mesh file (MSH 4.1 or 2.2).
+/// Reads a Gmsh ASCII mesh file (MSH 4.1 or 2.2). Only a regular file of at most
+/// [`crate::input::MAX_MESH_BYTES`] is read.
 pub fn read_gmsh(path: &Path) -> Result<Mesh, MeshError> {
     let file = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|e| MeshError::Unreadable {
-        file: file.clone(),
-        reason: e.to_string(),
+    let bytes = crate::input::read_bounded(path, crate::input::MAX_MESH_BYTES).map_err(|reason| {
+        MeshError::Unreadable {
+            file: file.clone(),
+            reason,
+        }
     })?;
     parse_gmsh(&String::from_utf8_lossy(&bytes), &file)
 }
@@ -77,6 +80,7 @@ pub fn parse_gmsh(text: &str, file: &str) -> Result<Mesh, MeshError> {
             lines: text.lines(),
             line_no: 0,
             file,
+            size: text.len(),
         },
         version: None,
         names: HashMap::new(),
@@ -100,7 +104,17 @@ struct Cursor<'a> {
     lines: std::str::Lines<'a>,
     line_no: usize,
     file: &'a str,
+    /// Length of the whole text (bytes): the bound of every count the file announces.
+    size: usize,
 }
+
+/// Fewest bytes of one node in either format (`1 0 0 0` and a line end; MSH 4.1: `1`, `0 0 0`).
+const MIN_NODE_BYTES: usize = 8;
+/// Fewest bytes of one element line (MSH 4.1: `1 1` and a line end).
+const MIN_ELEMENT_BYTES: usize = 4;
+/// Fewest bytes of an MSH 2.2 element line (`1 15 0 1`), a block header, an entity or a physical
+/// name line (`1 1 "a"`), with the line end.
+const MIN_RECORD_BYTES: usize = 8;
 
 impl<'a> Cursor<'a> {
     /// The next non-blank line, or `None` at the end of the file.
@@ -157,6 +171,50 @@ impl<'a> Cursor<'a> {
             *slot = tok
                 .parse()
                 .map_err(|_| self.malformed(format!("{what}: cannot read '{tok}' as a number")))?;
+        }
+        Ok(out)
+    }
+
+    /// `count` (announced by the current line for `what`) as a `usize`, if the file can hold
+    /// that many items of at least `min_bytes` each; checked before any memory is reserved.
+    fn count<T: TryInto<usize> + Copy + std::fmt::Display>(
+        &self,
+        count: T,
+        min_bytes: usize,
+        what: &str,
+    ) -> Result<usize, MeshError> {
+        let most = self.size / min_bytes;
+        match count.try_into() {
+            Ok(n) if n <= most => Ok(n),
+            _ => Err(self.malformed(format!(
+                "{what}: the count {count} is negative or more than a file of {} bytes can hold \
+                 (at most {most})",
+                self.size
+            ))),
+        }
+    }
+
+    /// Coordinates of node `id` on `line`, each finite.
+    fn coordinates(&self, line: &str, skip: usize, id: u64) -> Result<[f64; 3], MeshError> {
+        let mut out = [0.0; 3];
+        let mut toks = line.split_ascii_whitespace().skip(skip);
+        for (axis, slot) in ["x", "y", "z"].iter().zip(out.iter_mut()) {
+            let tok = toks
+                .next()
+                .ok_or_else(|| self.malformed(format!("node {id}: expected 3 coordinates in '{line}'")))?;
+            *slot = match tok.parse::<f64>() {
+                Ok(v) if v.is_finite() => v,
+                Ok(_) => {
+                    return Err(self.malformed(format!(
+                        "node {id}: coordinate {axis} = '{tok}' is not a finite number"
+                    )))
+                }
+                Err(_) => {
+                    return Err(self.malformed(format!(
+                        "node {id}: cannot read coordinate {axis} '{tok}' as a number"
+                    )))
+                }
+            };
         }
         Ok(out)
     }
@@ -286,7 +344,10 @@ impl<'a> Reader<'a> {
 
     fn physical_names(&mut self) -> Result<(), MeshError> {
         let line = self.cursor.next("PhysicalNames")?;
-        let [count] = self.cursor.fixed::<usize, 1>(line, "$PhysicalNames count")?;
+        let [count] = self.cursor.fixed::<u64, 1>(line, "$PhysicalNames count")?;
+        let count = self
+            .cursor
+            .count(count, MIN_RECORD_BYTES, "$PhysicalNames count")?;
         for _ in 0..count {
             let line = self.cursor.next("PhysicalNames")?;
             let [dim, tag] = self.cursor.fixed::<i64, 2>(line, "$PhysicalNames entry")?;
@@ -336,20 +397,29 @@ impl<'a> Reader<'a> {
             return self.skip_section("Entities");
         }
         let line = self.cursor.next("Entities")?;
-        let counts = self.cursor.fixed::<usize, 4>(line, "$Entities counts")?;
-        for (dim, &count) in counts.iter().enumerate() {
+        let counts = self.cursor.fixed::<u64, 4>(line, "$Entities counts")?;
+        let mut checked = [0usize; 4];
+        for (c, &count) in checked.iter_mut().zip(&counts) {
+            *c = self.cursor.count(count, MIN_RECORD_BYTES, "$Entities counts")?;
+        }
+        for (dim, &count) in checked.iter().enumerate() {
             // Points: tag x y z nPhys phys…; others: tag 6 bounds nPhys phys… nBound bound…
             let skip = if dim == 0 { 4 } else { 7 };
             for _ in 0..count {
                 let line = self.cursor.next("Entities")?;
                 let v: Vec<f64> = self.cursor.numbers(line, "entity")?;
+                let room = v.len().saturating_sub(skip + 1);
                 let n_phys = v.get(skip).copied().filter(|n| *n >= 0.0 && n.fract() == 0.0);
-                let n_phys = n_phys
-                    .ok_or_else(|| self.cursor.malformed(format!("entity line too short: '{line}'")))?
-                    as usize;
-                if v.len() < skip + 1 + n_phys {
-                    return Err(self.cursor.malformed(format!("entity line too short: '{line}'")));
-                }
+                let n_phys = match n_phys {
+                    Some(n) if n <= room as f64 => n as usize,
+                    Some(n) => {
+                        return Err(self.cursor.malformed(format!(
+                            "entity {}: {n} physical tags announced, the line holds {room} more numbers",
+                            v[0]
+                        )))
+                    }
+                    None => return Err(self.cursor.malformed(format!("entity line too short: '{line}'"))),
+                };
                 let mut groups = Vec::with_capacity(n_phys);
                 for &t in &v[skip + 1..skip + 1 + n_phys] {
                     let name = self.physical_name(dim as u8, t as i64)?;
@@ -384,31 +454,39 @@ impl<'a> Reader<'a> {
         let line = self.cursor.next("Nodes")?;
         match self.version {
             Some(Version::V2) => {
-                let [count] = self.cursor.fixed::<usize, 1>(line, "$Nodes count")?;
+                let [count] = self.cursor.fixed::<u64, 1>(line, "$Nodes count")?;
+                let count = self.cursor.count(count, MIN_NODE_BYTES, "$Nodes count")?;
                 self.reserve_nodes(count);
                 for _ in 0..count {
                     let line = self.cursor.next("Nodes")?;
                     let [id] = self.cursor.fixed::<u64, 1>(line, "node id")?;
-                    let [_, x, y, z] = self.cursor.fixed::<f64, 4>(line, "node")?;
-                    self.add_node(id, [x, y, z])?;
+                    let xyz = self.cursor.coordinates(line, 1, id)?;
+                    self.add_node(id, xyz)?;
                 }
             }
             _ => {
-                let [blocks, count] = self.cursor.fixed::<usize, 2>(line, "$Nodes header")?;
+                let [blocks, count] = self.cursor.fixed::<u64, 2>(line, "$Nodes header")?;
+                let blocks = self
+                    .cursor
+                    .count(blocks, MIN_RECORD_BYTES, "$Nodes header: entity blocks")?;
+                let count = self.cursor.count(count, MIN_NODE_BYTES, "$Nodes header: nodes")?;
                 self.reserve_nodes(count);
                 for _ in 0..blocks {
                     let line = self.cursor.next("Nodes")?;
                     let [_, _, _, in_block] = self.cursor.fixed::<i64, 4>(line, "node block header")?;
-                    let mut tags = Vec::with_capacity(in_block.max(0) as usize);
+                    let in_block = self
+                        .cursor
+                        .count(in_block, MIN_NODE_BYTES, "node block header: nodes")?;
+                    let mut tags = Vec::with_capacity(in_block);
                     for _ in 0..in_block {
                         let line = self.cursor.next("Nodes")?;
                         let [id] = self.cursor.fixed::<u64, 1>(line, "node tag")?;
                         tags.push((id, self.cursor.line_no));
                     }
                     let mut coords = Vec::with_capacity(tags.len());
-                    for _ in 0..in_block {
+                    for &(id, _) in &tags {
                         let line = self.cursor.next("Nodes")?;
-                        coords.push(self.cursor.fixed::<f64, 3>(line, "node coordinates")?);
+                        coords.push(self.cursor.coordinates(line, 0, id)?);
                     }
                     let end_line = self.cursor.line_no;
                     for ((id, line_no), xyz) in tags.into_iter().zip(coords) {
@@ -428,8 +506,8 @@ impl<'a> Reader<'a> {
         self.cursor.end("Nodes")
     }
 
+    /// Reserves room for `count` nodes (bounded by the file size, [`Cursor::count`]).
     fn reserve_nodes(&mut self, count: usize) {
-        let count = count.min(1 << 28);
         self.mesh.coords.reserve(count);
         self.mesh.node_ids.reserve(count);
         self.node_index.reserve(count);
@@ -446,11 +524,12 @@ impl<'a> Reader<'a> {
         let line = self.cursor.next("Elements")?;
         match self.version {
             Some(Version::V2) => {
-                let [count] = self.cursor.fixed::<usize, 1>(line, "$Elements count")?;
+                let [count] = self.cursor.fixed::<u64, 1>(line, "$Elements count")?;
+                let count = self.cursor.count(count, MIN_RECORD_BYTES, "$Elements count")?;
                 for _ in 0..count {
                     let line = self.cursor.next("Elements")?;
                     let v: Vec<i64> = self.cursor.numbers(line, "element")?;
-                    if v.len() < 3 || v[0] < 0 || v[1] < 0 || v[2] < 0 {
+                    if v.len() < 3 || v[0] < 0 || !(0..=i64::from(u32::MAX)).contains(&v[1]) || v[2] < 0 {
                         return Err(self.cursor.malformed(format!("element line: '{line}'")));
                     }
                     let (id, gmsh_type, n_tags) = (v[0] as u64, v[1] as u32, v[2] as usize);
@@ -466,19 +545,30 @@ impl<'a> Reader<'a> {
                     } else {
                         Vec::new()
                     };
-                    let node_tags: Vec<u64> = v[3 + n_tags..].iter().map(|&t| t.max(0) as u64).collect();
+                    if let Some(t) = v[3 + n_tags..].iter().find(|&&t| t <= 0) {
+                        return Err(self.cursor.malformed(format!(
+                            "element {id}: node id {t} is not positive (node ids are 1, 2, ...)"
+                        )));
+                    }
+                    let node_tags: Vec<u64> = v[3 + n_tags..].iter().map(|&t| t as u64).collect();
                     self.element(id, gmsh_type, dim, &node_tags, &groups)?;
                 }
             }
             _ => {
-                let [blocks] = self.cursor.fixed::<usize, 1>(line, "$Elements header")?;
+                let [blocks] = self.cursor.fixed::<u64, 1>(line, "$Elements header")?;
+                let blocks =
+                    self.cursor
+                        .count(blocks, MIN_RECORD_BYTES, "$Elements header: entity blocks")?;
                 for _ in 0..blocks {
                     let line = self.cursor.next("Elements")?;
                     let [dim, tag, gmsh_type, in_block] =
                         self.cursor.fixed::<i64, 4>(line, "element block header")?;
-                    if !(0..=3).contains(&dim) || gmsh_type < 0 {
+                    if !(0..=3).contains(&dim) || !(0..=i64::from(u32::MAX)).contains(&gmsh_type) {
                         return Err(self.cursor.malformed(format!("element block header '{line}'")));
                     }
+                    let in_block =
+                        self.cursor
+                            .count(in_block, MIN_ELEMENT_BYTES, "element block header: elements")?;
                     let groups = self.entities.get(&(dim as u8, tag)).cloned().unwrap_or_default();
                     for _ in 0..in_block {
                         let line = self.cursor.next("Elements")?;
@@ -1149,5 +1239,107 @@ mod tests {
                 "'xmax'",
             ],
         );
+    }
+
+    /// Issue defect 3: a physical-tag count of 2^64 − 1 on an entity line reached
+    /// `Vec::with_capacity` (capacity overflow).
+    #[test]
+    fn huge_physical_tag_count_of_an_entity_is_located() {
+        let old = "2 1 0 0 2 1 1 1 7 0";
+        let text = replace_line(V41, old, "2 1 0 0 2 1 1 18446744073709551615 7 0");
+        let msg = error_of(&text, "tags.msh");
+        assert_names(
+            &msg,
+            &[
+                &format!("tags.msh:{}", line_of(V41, old)),
+                "entity 2",
+                "physical tags",
+            ],
+        );
+    }
+
+    /// Issue defect 4: counts of 10^12 are refused before memory is reserved, naming the line
+    /// and the count.
+    #[test]
+    fn counts_larger_than_the_file_are_located() {
+        let big = "1000000000000";
+        let cases = [
+            (V41, "3 1 0 12", format!("3 1 0 {big}"), "node block header"),
+            (V41, "1 12 1 12", format!("1 {big} 1 12"), "$Nodes header"),
+            (V41, "1 1 3 2", format!("1 1 3 {big}"), "$Entities counts"),
+            (V22, "12", big.to_string(), "$Nodes count"),
+            (V22, "9", big.to_string(), "$Elements count"),
+            (V22, "7", big.to_string(), "$PhysicalNames count"),
+        ];
+        for (text, old, new, what) in cases {
+            let msg = error_of(&replace_line(text, old, &new), "big.msh");
+            assert_names(
+                &msg,
+                &[
+                    &format!("big.msh:{}", line_of(text, old)),
+                    what,
+                    big,
+                    "bytes can hold",
+                ],
+            );
+        }
+        let text = V41.replace("$Elements\n7 ", &format!("$Elements\n{big} "));
+        let msg = error_of(&text, "big.msh");
+        assert_names(&msg, &["$Elements header", big]);
+        let old = "3 2 5 1";
+        let msg = error_of(&replace_line(V41, old, &format!("3 2 5 {big}")), "big.msh");
+        assert_names(
+            &msg,
+            &[
+                &format!("big.msh:{}", line_of(V41, old)),
+                "element block header",
+                big,
+            ],
+        );
+    }
+
+    /// Issue item 7: a non-finite coordinate is named with its node and line (it was reported
+    /// later as a face area of NaN).
+    #[test]
+    fn non_finite_coordinates_are_located() {
+        let msg = error_of(&replace_line(V22, "5 1 1 0", "5 1 inf 0"), "inf.msh");
+        assert_names(
+            &msg,
+            &[
+                &format!("inf.msh:{}", line_of(V22, "5 1 1 0")),
+                "node 5",
+                "y = 'inf'",
+                "finite",
+            ],
+        );
+        let msg = error_of(&replace_line(V41, "2 1 1", "2 nan 1"), "nan.msh");
+        assert_names(
+            &msg,
+            &[&format!("nan.msh:{}", line_of(V41, "2 1 1")), "node 12", "'nan'"],
+        );
+    }
+
+    /// Issue item 7: a negative node id in an MSH 2.2 element is reported as written.
+    #[test]
+    fn negative_node_id_of_an_element_is_reported_as_written() {
+        let old = "9 5 2 7 2 2 3 6 5 8 9 12 11";
+        let msg = error_of(&replace_line(V22, old, "9 5 2 7 2 2 3 6 5 8 -3 12 11"), "neg.msh");
+        assert_names(
+            &msg,
+            &[
+                &format!("neg.msh:{}", line_of(V22, old)),
+                "element 9",
+                "node id -3",
+            ],
+        );
+        assert!(!msg.contains("node 0"), "{msg}");
+    }
+
+    #[test]
+    fn a_device_is_not_read_as_a_mesh() {
+        let msg = read_gmsh(Path::new("/dev/zero"))
+            .expect_err("a device")
+            .to_string();
+        assert_names(&msg, &["/dev/zero", "not a regular file"]);
     }
 }

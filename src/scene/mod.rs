@@ -7,10 +7,13 @@
 
 pub mod dynamic;
 pub mod error;
+pub mod ranges;
+pub mod restraint;
 pub mod schema;
 pub mod term;
 #[cfg(test)]
 mod tests;
+pub mod text;
 pub mod validate;
 
 pub use error::SceneError;

@@ -1,8 +1,12 @@
-//! Scene tests: block patterns and the generated CFRD schedule.
+//! Scene tests: block patterns, the generated CFRD schedule, and hostile input (issue: bad input
+//! must be an error naming its place).
 
 use super::validate::block_pattern_matches;
 use super::{Scene, SceneError, Term};
 use std::path::Path;
+
+/// A `boundary` section that holds a box by its base.
+const FIXED_BASE: &str = "boundary: [{ set: zmin, fix: [x, y, z] }]\n";
 
 /// A box of three layers with the given `blocks` section.
 fn box_scene(blocks: &str) -> Result<Scene, SceneError> {
@@ -10,7 +14,7 @@ fn box_scene(blocks: &str) -> Result<Scene, SceneError> {
         "name: t\nunits: SI\nmesh: {{ box: {{ divisions: [1, 1, 3], layers: 3 }} }}\n\
          materials:\n  a: {{ model: elastic, young: 1.0e7, poisson: 0.3, density: 2000.0 }}\n  \
          b: {{ model: elastic, young: 2.0e7, poisson: 0.3, density: 2000.0 }}\n\
-         blocks:\n{blocks}"
+         blocks:\n{blocks}{FIXED_BASE}"
     );
     Scene::from_str(&text, "t.yaml", Path::new("."))
 }
@@ -180,7 +184,7 @@ fn gp_box_scene(stol: &str, solver: &str) -> Result<Scene, SceneError> {
     let text = format!(
         "name: t\nunits: SI\nmesh: {{ box: {{ divisions: [1, 1, 3], layers: 3 }} }}\n\
          materials:\n  a: {{ model: rockfill_gp, integration: {{ stol: {stol} }} }}\n\
-         blocks:\n  layer_*: {{ material: a }}\nsolver: {solver}\n"
+         blocks:\n  layer_*: {{ material: a }}\nsolver: {solver}\n{FIXED_BASE}"
     );
     Scene::from_str(&text, "t.yaml", Path::new("."))
 }
@@ -239,4 +243,161 @@ fn a_bad_integration_tolerance_ratio_names_its_yaml_path() {
         ));
         assert!(err.contains("solver.integration_tol_ratio"), "{bad}: {err}");
     }
+}
+
+/// A box of three layers, one material, with `extra` appended (boundary, loads, stages).
+fn layered_box(extra: &str) -> Result<Scene, SceneError> {
+    let text = format!(
+        "name: t\nunits: SI\nmesh: {{ box: {{ divisions: [1, 1, 3], layers: 3 }} }}\n\
+         materials:\n  a: {{ model: elastic, young: 1.0e7, poisson: 0.3, density: 2000.0 }}\n\
+         blocks:\n  layer_*: {{ material: a }}\n{extra}"
+    );
+    Scene::from_str(&text, "t.yaml", Path::new("."))
+}
+
+#[test]
+fn a_body_free_to_move_rigidly_is_refused_naming_the_free_motions() {
+    let err = message(layered_box("boundary: []\n"));
+    assert!(
+        err.contains("t.yaml: boundary:")
+            && err.contains("not restrained")
+            && err.contains("every translation"),
+        "{err}"
+    );
+    let err = message(layered_box("boundary: [{ set: zmin, fix: [z] }]\n"));
+    for free in [
+        "translation along x",
+        "translation along y",
+        "rotation about an axis along z",
+    ] {
+        assert!(err.contains(free), "{free}: {err}");
+    }
+    assert!(
+        !err.contains("along z,") && !err.contains("axis along x"),
+        "{err}"
+    );
+    layered_box(FIXED_BASE).expect("held by its base");
+}
+
+#[test]
+fn a_stage_is_checked_on_its_placed_elements_only() {
+    let stages =
+        "stages:\n  - { name: one, activate: [layer_1] }\n  - { name: two, activate: [layer_2, layer_3] }\n";
+    layered_box(&format!("{FIXED_BASE}{stages}")).expect("every stage held by the base");
+    let top_first =
+        "stages:\n  - { name: top, activate: [layer_3] }\n  - { name: rest, activate: [layer_1, layer_2] }\n";
+    let err = message(layered_box(&format!("{FIXED_BASE}{top_first}")));
+    assert!(
+        err.contains("stage 1 'top'") && err.contains("block 'layer_3'"),
+        "{err}"
+    );
+    // a body not connected to the restrained one is free even with the other held
+    let apart = "stages:\n  - { name: one, activate: [layer_1] }\n  - { name: gap, activate: [layer_3] }\n";
+    let err = message(layered_box(&format!("{FIXED_BASE}{apart}")));
+    assert!(
+        err.contains("stage 2 'gap'") && err.contains("every translation"),
+        "{err}"
+    );
+}
+
+#[test]
+fn every_load_and_stage_value_is_range_checked_with_its_path_and_unit() {
+    let cases = [
+        ("loads: { hydrostatic: [{ faces: zmax, level: .nan }] }\n", "loads.hydrostatic[0].level", "m"),
+        ("loads: { hydrostatic: [{ faces: zmax, level: -.inf }] }\n", "loads.hydrostatic[0].level", "m"),
+        ("loads: { gravity: { g: [0.0, 0.0, 1.0e300] } }\n", "loads.gravity.g", "1e300"),
+        ("loads: { pressure: [{ faces: zmax, value: .inf }] }\n", "loads.pressure[0].value", "Pa"),
+        (
+            "stages: [{ name: s, activate: [layer_1, layer_2, layer_3], loads: { pressure: [{ faces: zmax, value: .nan }] } }]\n",
+            "stages[0].loads.pressure[0].value",
+            "Pa",
+        ),
+        (
+            "stages: [{ name: s, activate: [layer_1, layer_2, layer_3], loads: { hydrostatic: [{ faces: zmax, level: .inf }] } }]\n",
+            "stages[0].loads.hydrostatic[0].level",
+            "m",
+        ),
+        (
+            "stages: [{ name: s, activate: [layer_1, layer_2, layer_3], load_steps: 4294967295 }]\n",
+            "stages[0].load_steps",
+            "1000000",
+        ),
+        ("solver: { max_cutbacks: 4000000000 }\n", "solver.max_cutbacks", "60"),
+        ("solver: { newton_max_iterations: 0 }\n", "solver.newton_max_iterations", "at least 1"),
+    ];
+    for (extra, path, unit) in cases {
+        let err = message(layered_box(&format!("{FIXED_BASE}{extra}")));
+        assert!(err.contains(path) && err.contains(unit), "{extra}: {err}");
+    }
+    let err = message(layered_box(
+        "boundary: [{ set: zmin, fix: [x, y, z], value: [0.0, .nan, 0.0] }]\n",
+    ));
+    assert!(
+        err.contains("boundary[0].value[1]") && err.contains(" m "),
+        "{err}"
+    );
+}
+
+#[test]
+fn generator_counts_are_bounded_before_memory_is_reserved() {
+    let text = "name: t\nunits: SI\nmesh: { cfrd: { fill_layers: 8, impoundment_stages: 4294967296 } }\n\
+                materials: {}\nblocks: {}\n";
+    let err = message(Scene::from_str(text, "t.yaml", Path::new(".")));
+    assert!(
+        err.contains("mesh.cfrd.impoundment_stages") && err.contains("4294967296"),
+        "{err}"
+    );
+    let text = "name: t\nunits: SI\nmesh: { cfrd: { fill_layers: 8, elements_per_panel: 100000000 } }\n\
+                materials: {}\nblocks: {}\n";
+    let err = message(Scene::from_str(text, "t.yaml", Path::new(".")));
+    assert!(
+        err.contains("mesh.cfrd.fill_layers") && err.contains("limit"),
+        "{err}"
+    );
+    let text = "name: t\nunits: SI\nmesh: { box: { divisions: [100000, 100000, 100000] } }\n\
+                materials: {}\nblocks: {}\n";
+    let err = message(Scene::from_str(text, "t.yaml", Path::new(".")));
+    assert!(err.contains("divisions") && err.contains("limit"), "{err}");
+}
+
+#[test]
+fn a_block_or_material_named_twice_is_an_error_naming_both_lines() {
+    let err = message(layered_box(&format!(
+        "  layer_*: {{ material: a }}\n{FIXED_BASE}"
+    )));
+    assert!(
+        err.contains("blocks") && err.contains("'layer_*'") && err.contains("lines 7 and 8"),
+        "{err}"
+    );
+    let text = "name: t\nunits: SI\nmesh: { box: {} }\nmaterials:\n  a: { model: elastic, young: 1.0e7, poisson: 0.3, density: 2000.0 }\n  \
+                a: { model: elastic, young: 2.0e7, poisson: 0.3, density: 2000.0 }\nblocks: { layer_1: { material: a } }\n";
+    let err = message(Scene::from_str(text, "t.yaml", Path::new(".")));
+    assert!(
+        err.contains("materials") && err.contains("lines 5 and 6"),
+        "{err}"
+    );
+}
+
+#[test]
+fn a_byte_order_mark_and_deep_nesting_are_handled_before_parsing() {
+    let text = format!(
+        "{}name: t\nunits: SI\nmesh: {{ box: {{}} }}\nmaterials:\n  a: {{ model: elastic, young: 1.0e7, poisson: 0.3, density: 2000.0 }}\n\
+         blocks: {{ layer_1: {{ material: a }} }}\n{FIXED_BASE}",
+        '\u{feff}'
+    );
+    Scene::from_str(&text, "bom.yaml", Path::new(".")).expect("a BOM is dropped");
+    let text = format!("name: {}\n", "[".repeat(100_000));
+    let t = std::time::Instant::now();
+    let err = message(Scene::from_str(&text, "deep.yaml", Path::new(".")));
+    assert!(t.elapsed().as_secs_f64() < 1.0, "{:?}", t.elapsed());
+    assert!(err.contains("deep.yaml") && err.contains("nested"), "{err}");
+}
+
+#[test]
+fn a_device_is_not_read_as_a_scene() {
+    let err = message(Scene::load(Path::new("/dev/zero")));
+    assert!(
+        err.contains("/dev/zero") && err.contains("not a regular file"),
+        "{err}"
+    );
 }

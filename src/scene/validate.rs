@@ -49,18 +49,26 @@ impl Scene {
 }
 
 impl Scene {
-    /// Reads, parses, validates and resolves a scene file.
+    /// Reads, parses, validates and resolves a scene file (a regular file of at most
+    /// [`crate::input::MAX_SCENE_BYTES`]).
     pub fn load(path: &Path) -> Result<Scene, SceneError> {
-        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Read {
+        let read_error = |reason: String| SceneError::Read {
             file: path.display().to_string(),
-            source,
-        })?;
+            source: std::io::Error::other(reason),
+        };
+        let bytes = crate::input::read_bounded(path, crate::input::MAX_SCENE_BYTES).map_err(read_error)?;
+        let text = String::from_utf8(bytes).map_err(|e| read_error(format!("not UTF-8 text: {e}")))?;
         let base = path.parent().map(Path::to_path_buf).unwrap_or_default();
         Scene::from_str(&text, &path.display().to_string(), &base)
     }
 
-    /// Parses, validates and resolves scene text; relative paths are taken from `base`.
+    /// Parses, validates and resolves scene text; relative paths are taken from `base`. A
+    /// leading byte order mark is dropped; nesting deeper than the limits of [`super::text`]
+    /// and a key given twice in a mapping are errors.
     pub fn from_str(text: &str, source: &str, base: &Path) -> Result<Scene, SceneError> {
+        let text = super::text::strip_bom(text);
+        super::text::check_depth(text, source)?;
+        super::text::check_duplicate_keys(text, source)?;
         let mut file = parse(text, source)?;
         let inv = |path: &str, message: String| SceneError::Invalid {
             file: source.to_string(),
@@ -229,12 +237,6 @@ impl Scene {
                     placed[bi as usize] = Some(k);
                     activate.push(bi);
                 }
-                if st.load_steps == Some(0) {
-                    return Err(inv(
-                        &format!("stages[{k}].load_steps"),
-                        "must be at least 1".into(),
-                    ));
-                }
                 let dynamic = match &st.dynamic {
                     Some(d) => Some(dynamic::resolve(d, base, &format!("stages[{k}].dynamic"), &inv)?),
                     None => None,
@@ -258,6 +260,8 @@ impl Scene {
                 });
             }
         }
+
+        super::restraint::check_restraint(&mesh, &stages, &fixed).map_err(|m| inv("boundary", m))?;
 
         Ok(Scene {
             file,
@@ -590,37 +594,11 @@ fn check_values(f: &SceneFile, inv: &dyn Fn(&str, String) -> SceneError) -> Resu
             ));
         }
     }
-    if let Some(g) = &f.loads.gravity {
-        let n = (g.g[0] * g.g[0] + g.g[1] * g.g[1] + g.g[2] * g.g[2]).sqrt();
-        if !n.is_finite() || n > 100.0 {
-            return Err(inv(
-                "loads.gravity.g",
-                format!("|g| = {n} m/s² is not plausible (SI: 9.81)"),
-            ));
-        }
-    }
-    for (i, p) in f.loads.pressure.iter().enumerate() {
-        if !p.value.is_finite() {
-            return Err(inv(
-                &format!("loads.pressure[{i}].value"),
-                "must be finite".into(),
-            ));
-        }
-    }
-    for (i, h) in f.loads.hydrostatic.iter().enumerate() {
-        if !(h.unit_weight.is_finite() && h.unit_weight > 100.0 && h.unit_weight < 1.0e5) {
-            return Err(inv(
-                &format!("loads.hydrostatic[{i}].unit_weight"),
-                format!("{} N/m³ is not plausible (SI: 9810)", h.unit_weight),
-            ));
-        }
-    }
+    super::ranges::check_loads(&f.loads, "loads", inv)?;
+    super::ranges::check_stages_and_counts(f, inv)?;
     let s = &f.solver;
     if !(s.rtol > 0.0 && s.rtol < 1.0) {
         return Err(inv("solver.rtol", format!("must lie in (0, 1), got {}", s.rtol)));
-    }
-    if s.load_steps == 0 {
-        return Err(inv("solver.load_steps", "must be at least 1".into()));
     }
     if !(s.newton_tol > 0.0 && s.newton_tol < 1.0) {
         return Err(inv(
