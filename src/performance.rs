@@ -234,8 +234,8 @@
 //! ## The seed quake (coarse mesh)
 //!
 //! `mpirun -n 2 cfrd run inputs/scenes/seed_coarse_mohr_coulomb_quake.yaml -o out --monitor`
-//! under `/usr/bin/time -v`, commit 7be412f (the GP interface's new defaults do not enter: this
-//! scene has the ideal elasto-plastic interface). The construction and impoundment, then the
+//! under `/usr/bin/time -v`, commit 7be412f (the ideal elasto-plastic interface; its GP rockfill
+//! has the defaults of main). The construction and impoundment, then the
 //! 20 s record `inputs/accel/seed_quake.csv` at Δt = 0.01 s (Newmark average acceleration,
 //! consistent mass, Rayleigh 2 % at 1 and 5 Hz). Measured on a machine that ran the test suite
 //! at the same time (the run at nice 10), so the times are upper bounds, not a benchmark:
@@ -249,6 +249,5 @@
 //! | crest residual displacement (x stream, y axis, z) | +0.097 m, −0.005 m, −0.179 m (0.10 % of H) |
 //! | crest amplification (peak absolute over PGA, every 0.1 s) | 2.9 (x), 2.1 (y), 3.0 (z) |
 //!
-//! The coarse GP-interface quake (`seed_coarse_gp_interface_quake.yaml`), run with the GP
-//! interface's earlier defaults (`reversal_branch: start`) before commit 7ae1843, cut back 10
-//! times at t ≈ 4.06 s and was stopped; it has not been run with the new defaults yet.
+//! The coarse GP-interface quake (`seed_coarse_gp_interface_quake.yaml`, the GP interface's
+//! defaults of main) cut back 10 times at t ≈ 4.06 s and was stopped: not yet measured.
