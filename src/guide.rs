@@ -345,8 +345,28 @@
 //! | 0 | success (also a run ended by `--stop-after-stage`) |
 //! | 1 | `cfrd compare --tolerance` found a larger difference; MPI could not be initialized |
 //! | 2 | bad input: YAML, mesh, parameters, options, a checkpoint of another scene; the message names the YAML path, file line or element id |
-//! | 3 | solver failure (a load step that still fails after its cut-backs; also a failure to write the outputs); `cfrd bench materials` when a model failed |
+//! | 3 | solver failure (a load step that still fails after its cut-backs); `cfrd bench materials` when a model failed |
+//! | 4 | I/O or environment failure: a full disk, a failing file system, an output directory that cannot be created; the last checkpoint and the results published before it are intact |
 //! | 101 | a bug: the panic hook aborts every rank, so a parallel job never hangs |
+//!
+//! A full disk is found before HDF5 writes: every collective write first checks that its size
+//! plus a reserve of 512 KiB (room for the file's metadata) is free on the output file system,
+//! and refuses it on every rank otherwise (exit code 4, naming the file and the bytes free and
+//! needed). A write that fails anyway is never followed by a collective close (which could
+//! hang); the ranks end with exit code 4 and remove their temporary files. A rank that stays
+//! longer than `CFRD_IO_TIMEOUT` seconds (default 300) inside one collective file operation
+//! prints what it was writing and ends with exit code 4, and `mpirun` ends the others; files it
+//! leaves (`.results.h5.partial-<pid>`) are named and removed by the next run into that
+//! directory. `CFRD_IO_RESERVE` (bytes) changes the reserve; the fault tests set it to 0 to
+//! meet a full disk inside HDF5.
+//!
+//! Every checkpoint is read back after it is written and before it replaces the previous one,
+//! and ends with an integrity record (`cfrd::io::integrity`): checksums of each dataset's bytes
+//! and of the HDF5 metadata in 4 KiB pieces. A restart checks it before HDF5 reads the file; a
+//! changed byte is refused with exit code 2 naming the dataset (`dataset /checkpoint/u (bytes
+//! 4096..4952) does not match its checksum`) or the metadata bytes. Every table of a results
+//! file carries a `checksum` attribute, checked whenever cfrd reads it back (`cfrd compare`,
+//! `cfrd profiles`).
 //!
 //! Hostile input is refused with exit code 2 before memory is reserved for it or a solve starts:
 //! every count a mesh file announces is bounded by what a file of its size can hold; scene, mesh

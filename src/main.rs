@@ -492,6 +492,13 @@ fn with_mpi(
             e.code
         }
     };
+    if cfrd::io::guard::abandoned() {
+        // an HDF5 file whose write failed is still open: finalizing MPI would flush it
+        // collectively and could hang (cfrd::io::guard)
+        mpi::traits::CommunicatorCollectives::barrier(&world);
+        std::mem::forget(universe);
+        cfrd::io::guard::exit_now(code);
+    }
     drop(universe);
     ExitCode::from(code as u8)
 }

@@ -14,6 +14,9 @@ use mpi::topology::{Communicator, SimpleCommunicator};
 pub const EXIT_INPUT: i32 = 2;
 /// Exit code for solver failures.
 pub const EXIT_SOLVER: i32 = 3;
+/// Exit code of I/O and environment failures: a full disk, a failing file system, an output
+/// directory that cannot be created ([`crate::io::guard`]).
+pub const EXIT_IO: i32 = 4;
 /// Exit code used by the panic hook's `MPI_Abort`.
 pub const EXIT_PANIC: i32 = 101;
 

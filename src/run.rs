@@ -7,7 +7,7 @@ use crate::io::checkpoint::{self, CHECKPOINT_FILE};
 use crate::io::hdf5_out::{strain_output_components, OwnedMesh, ResultsFile, StepInfo};
 use crate::io::summary::{Phase, PhaseTimer, RunSummary, StageSeconds};
 use crate::linalg::petsc::Petsc;
-use crate::parallel::{any_error, broadcast_vec, EXIT_INPUT, EXIT_SOLVER};
+use crate::parallel::{any_error, broadcast_vec, EXIT_INPUT, EXIT_IO, EXIT_SOLVER};
 use crate::scene::schema::CheckpointMode;
 use crate::scene::Scene;
 use crate::solver::discretization::Discretization;
@@ -179,8 +179,10 @@ pub fn run_scene(
         .out_dir
         .clone()
         .unwrap_or_else(|| scene.file.output.dir.clone());
-    any_error(world, std::fs::create_dir_all(&out_dir))
-        .map_err(|m| input(format!("output directory {}: {m}", out_dir.display())))?;
+    any_error(world, std::fs::create_dir_all(&out_dir)).map_err(|m| RunFailure {
+        code: EXIT_IO,
+        message: format!("output directory {}: {m}", out_dir.display()),
+    })?;
 
     timer.start(Phase::Partition);
     let partition = partition_scene(world, scene)?;
@@ -264,7 +266,7 @@ pub fn run_scene(
         Ok(f)
     });
     let mut file = any_error(world, created).map_err(|m| RunFailure {
-        code: EXIT_SOLVER,
+        code: EXIT_IO,
         message: format!("writing results: {m}"),
     })?;
     timer.stop();
@@ -351,7 +353,7 @@ pub fn run_scene(
             // follows them: a run killed later leaves both (a stage in both a killed part's and
             // the next part's results is one run again after a kill between the two writes)
             any_error(world, file.publish()).map_err(|m| RunFailure {
-                code: EXIT_SOLVER,
+                code: EXIT_IO,
                 message: format!("writing results: {m}"),
             })?;
             ckpt_seconds += write_checkpoint(world, &ckpt, scene, &problem, &report, None)?;
@@ -378,7 +380,7 @@ pub fn run_scene(
     // the stages completed so far are kept, also when a later stage failed
     timer.start(Phase::Output);
     any_error(world, file.close()).map_err(|m| RunFailure {
-        code: EXIT_SOLVER,
+        code: EXIT_IO,
         message: format!("writing results: {m}"),
     })?;
     write_quake(world, scene, &h5, &out_dir, failure.as_deref())?;
@@ -403,7 +405,7 @@ pub fn run_scene(
                 Err(m) => {
                     let stage = failure.as_ref().map(|f| format!("{f}; ")).unwrap_or_default();
                     return Err(RunFailure {
-                        code: EXIT_SOLVER,
+                        code: if failure.is_some() { EXIT_SOLVER } else { EXIT_IO },
                         message: format!("{stage}writing the profiles: {m}"),
                     });
                 }
@@ -460,14 +462,14 @@ pub fn run_scene(
     summary.checkpoint_seconds = crate::parallel::max_f64(world, ckpt_seconds);
     summary.stage_seconds = report.stage_seconds.clone();
     summary.gather_peak_memory(world);
-    if rank == 0 {
-        summary
-            .write_json(&out_dir.join("summary.json"))
-            .map_err(|e| RunFailure {
-                code: EXIT_SOLVER,
-                message: e.to_string(),
-            })?;
-    }
+    let written = match rank {
+        0 => summary.write_json(&out_dir.join("summary.json")),
+        _ => Ok(()),
+    };
+    any_error(world, written).map_err(|m| RunFailure {
+        code: EXIT_IO,
+        message: format!("writing the run summary: {m}"),
+    })?;
     say(&format!(
         "results: {} (ParaView: {}), summary: {}",
         h5.display(),
@@ -489,7 +491,7 @@ fn write_checkpoint(
     let t0 = Instant::now();
     let written = checkpoint::write(world, ckpt, scene, problem, report, within);
     any_error(world, written).map_err(|m| RunFailure {
-        code: EXIT_SOLVER,
+        code: EXIT_IO,
         message: format!("writing the checkpoint {}: {m}", ckpt.display()),
     })?;
     Ok(t0.elapsed().as_secs_f64())
@@ -514,7 +516,7 @@ fn write_quake(
         Ok(Vec::new())
     };
     any_error(world, written).map(|_| ()).map_err(|m| RunFailure {
-        code: EXIT_SOLVER,
+        code: if failure.is_some() { EXIT_SOLVER } else { EXIT_IO },
         message: match failure {
             Some(f) => format!("{f}; writing the earthquake outputs: {m}"),
             None => format!("writing the earthquake outputs: {m}"),
@@ -564,7 +566,7 @@ fn write_results(
         .map_err(|e| e.to_string())
         .and_then(|res| write_step(file, info, &res, has_interfaces).map_err(|e| e.to_string()));
     any_error(world, written).map_err(|m| RunFailure {
-        code: EXIT_SOLVER,
+        code: EXIT_IO,
         message: format!("writing results: {m}"),
     })
 }

@@ -17,13 +17,24 @@
 //! ([`ResultsFile::close`]). A run killed while writing leaves the previous checkpoint intact
 //! (and a stale `.partial-<pid>` file that may be deleted).
 //!
+//! # Integrity
+//!
+//! Every table carries the `checksum` attribute of [`crate::io::hdf5_out::rows_checksum`], and
+//! the attributes of `/checkpoint` the XXH3-64 of their text (`attrs_checksum`). After HDF5
+//! closed the temporary file, every table is read back and checked before the file replaces
+//! the previous checkpoint, and rank 0 appends the integrity record of
+//! [`crate::io::integrity`] (checksums of every byte). A restart checks the record before HDF5
+//! opens the file, then every table and the attributes as they are read: a changed byte gives
+//! an input error (exit code 2) naming the dataset or the metadata bytes.
+//!
 //! # Layout (format `cfrd-results` version 1 with a `/checkpoint` group, no mesh or steps)
 //!
 //! ```text
-//! /checkpoint            attributes: checkpoint_version = 1 (u64), scene_hash (FNV-1a of the
+//! /checkpoint            attributes: checkpoint_version = 2 (u64), scene_hash (FNV-1a of the
 //!                        scene text), mesh_hash (FNV-1a of coordinates, connectivity, blocks),
 //!                        n_nodes, n_elements, n_blocks, stages_done (completed stages, ≥ 1),
-//!                        last_stage (its name), n_ranks (informational), state_encoding = "postcard"
+//!                        last_stage (its name), n_ranks (informational), state_encoding = "postcard",
+//!                        attrs_checksum (XXH3-64 of the attributes above, hex)
 //!   u                    f64 [n_nodes, 3]       displacement (m) at the end of the last stage
 //!   f_prev               f64 [n_nodes, 3]       external force of the last stage (N), f_prev
 //!   node_offset          f64 [n_nodes, 3]       zero of each node's reported displacement (m)
@@ -72,7 +83,7 @@ use mpi::traits::{Communicator, CommunicatorCollectives};
 use std::path::Path;
 
 /// Version of the `/checkpoint` layout; a checkpoint of another version is refused.
-pub const CHECKPOINT_VERSION: u64 = 1;
+pub const CHECKPOINT_VERSION: u64 = 2;
 
 /// File name of the checkpoint in the output directory.
 pub const CHECKPOINT_FILE: &str = "checkpoint.h5";
@@ -137,6 +148,7 @@ pub fn write(
     let mesh = &scene.mesh;
     let (n_nodes, n_elements) = (mesh.num_nodes() as u64, mesh.elements.len() as u64);
     let mut file = ResultsFile::create(world, path, &scene.file.name)?;
+    file.seal_on_close();
     let comm = file.comm().duplicate();
     let node_plan = Redistribution::new(&comm, "nodes", n_nodes, &disc.owned_nodes)?;
     let element_plan = Redistribution::new(&comm, "elements", n_elements, &disc.owned_elements)?;
@@ -190,24 +202,74 @@ pub fn write(
         0 => "",
         k => scene.stages[k - 1].name.as_str(),
     };
-    file.write_group_attrs(
-        "/checkpoint",
-        &[
-            ("checkpoint_version", CHECKPOINT_VERSION),
-            ("n_nodes", n_nodes),
-            ("n_elements", n_elements),
-            ("n_blocks", state.active_block.len() as u64),
-            ("stages_done", state.stages_done as u64),
-            ("n_ranks", comm.size() as u64),
-        ],
-        &[
-            ("scene_hash", &scene.hash),
-            ("mesh_hash", &mesh_hash(mesh)),
-            ("last_stage", stage_name),
-            ("state_encoding", "postcard"),
-        ],
-    )?;
-    file.close()
+    let numbers = [
+        ("checkpoint_version", CHECKPOINT_VERSION),
+        ("n_nodes", n_nodes),
+        ("n_elements", n_elements),
+        ("n_blocks", state.active_block.len() as u64),
+        ("stages_done", state.stages_done as u64),
+        ("n_ranks", comm.size() as u64),
+    ];
+    let m_hash = mesh_hash(mesh);
+    let strings = [
+        ("scene_hash", scene.hash.as_str()),
+        ("mesh_hash", m_hash.as_str()),
+        ("last_stage", stage_name),
+        ("state_encoding", "postcard"),
+    ];
+    let sum = attrs_checksum(&numbers, &strings);
+    let mut all_strings = strings.to_vec();
+    all_strings.push(("attrs_checksum", sum.as_str()));
+    file.write_group_attrs("/checkpoint", &numbers, &all_strings)?;
+    // read back before it replaces the last checkpoint: a write that failed without an error
+    // (a full device behind MPI-IO) must not replace a good checkpoint by a bad one
+    file.close_checked(|temp| {
+        ResultsReader::open(&comm, temp)?
+            .requiring_checksums()
+            .verify_tables()
+            .map(|_| ())
+    })
+}
+
+/// XXH3-64 (hex) of the `/checkpoint` attributes `name=value`, one per line in the order
+/// given: stored as `attrs_checksum` and checked before the attributes are used.
+fn attrs_checksum(numbers: &[(&str, u64)], strings: &[(&str, &str)]) -> String {
+    let text: Vec<String> = numbers
+        .iter()
+        .map(|(k, v)| format!("{k}={v}"))
+        .chain(strings.iter().map(|(k, v)| format!("{k}={v}")))
+        .collect();
+    format!("{:016x}", xxhash_rust::xxh3::xxh3_64(text.join("\n").as_bytes()))
+}
+
+/// Reads the `/checkpoint` attributes and checks them against `attrs_checksum`; returns
+/// `n_nodes`, `n_elements`, `stages_done`, `scene_hash` and `mesh_hash`.
+fn checked_attrs(reader: &ResultsReader, path: &Path) -> Result<(u64, u64, u64, String, String), IoError> {
+    let corrupt = |m: &str| IoError::Layout(format!("{}: {m}: the file is corrupted", path.display()));
+    let num = |k: &str| reader.attr::<u64>("/checkpoint", k);
+    let text = |k: &str| reader.attr_string("/checkpoint", k);
+    let numbers = [
+        ("checkpoint_version", CHECKPOINT_VERSION),
+        ("n_nodes", num("n_nodes")?),
+        ("n_elements", num("n_elements")?),
+        ("n_blocks", num("n_blocks")?),
+        ("stages_done", num("stages_done")?),
+        ("n_ranks", num("n_ranks")?),
+    ];
+    let (scene_hash, m_hash) = (text("scene_hash")?, text("mesh_hash")?);
+    let (last, encoding) = (text("last_stage")?, text("state_encoding")?);
+    let strings = [
+        ("scene_hash", scene_hash.as_str()),
+        ("mesh_hash", m_hash.as_str()),
+        ("last_stage", last.as_str()),
+        ("state_encoding", encoding.as_str()),
+    ];
+    if text("attrs_checksum")? != attrs_checksum(&numbers, &strings) {
+        return Err(corrupt(
+            "the attributes of /checkpoint do not match their checksum",
+        ));
+    }
+    Ok((numbers[1].1, numbers[2].1, numbers[4].1, scene_hash, m_hash))
 }
 
 /// Reads a checkpoint for `scene` and this rank's part `disc`. Refuses a checkpoint of another
@@ -218,7 +280,12 @@ pub fn read(
     scene: &Scene,
     disc: &Discretization,
 ) -> Result<(ProblemState, SolveReport), IoError> {
-    let reader = ResultsReader::open(world, path)?;
+    let intact = match world.rank() {
+        0 => super::integrity::verify(path),
+        _ => Ok(()),
+    };
+    agree(world, intact)?;
+    let reader = ResultsReader::open(world, path)?.requiring_checksums();
     let comm = reader.comm().duplicate();
     let mesh = &scene.mesh;
     let (n_nodes, n_elements) = (mesh.num_nodes() as u64, mesh.elements.len() as u64);
@@ -232,7 +299,7 @@ pub fn read(
                 "checkpoint version {version}, this cfrd reads version {CHECKPOINT_VERSION}"
             )));
         }
-        let hash = reader.attr_string("/checkpoint", "scene_hash")?;
+        let (nn, ne, done, hash, m_hash) = checked_attrs(&reader, path)?;
         if hash != scene.hash {
             return Err(layout(format!(
                 "written for another scene (scene hash {hash}, this scene's is {}); a \
@@ -240,11 +307,6 @@ pub fn read(
                 scene.hash
             )));
         }
-        let m_hash = reader.attr_string("/checkpoint", "mesh_hash")?;
-        let (nn, ne): (u64, u64) = (
-            reader.attr("/checkpoint", "n_nodes")?,
-            reader.attr("/checkpoint", "n_elements")?,
-        );
         if m_hash != mesh_hash(mesh) || nn != n_nodes || ne != n_elements {
             return Err(layout(format!(
                 "written for another mesh ({nn} nodes, {ne} elements, mesh hash {m_hash}; \
@@ -252,7 +314,6 @@ pub fn read(
                 mesh_hash(mesh)
             )));
         }
-        let done: u64 = reader.attr("/checkpoint", "stages_done")?;
         let within = reader.shape("/checkpoint/load_path").is_ok();
         if (done == 0 && !within) || done >= scene.stages.len() as u64 {
             return Err(layout(format!(

@@ -41,6 +41,21 @@ pub enum IoError {
         /// The violation, with an example index.
         reason: String,
     },
+    /// Less space is free on the output file system than a write needs
+    /// ([`super::guard::ensure_space`]).
+    #[error(
+        "no space left for {path}: {free} bytes free on its file system, {need} needed \
+         (the write and a reserve for the file's metadata); free space, then restart from the \
+         last checkpoint or run again"
+    )]
+    NoSpace {
+        /// The file that was to be written.
+        path: PathBuf,
+        /// Bytes free.
+        free: u64,
+        /// Bytes needed.
+        need: u64,
+    },
     /// The caller's arguments are inconsistent (lengths, component counts, names, order of calls).
     #[error("{0}")]
     Usage(String),
@@ -113,7 +128,10 @@ pub fn write_atomic(path: &std::path::Path, bytes: &[u8]) -> Result<(), IoError>
         path: path.to_path_buf(),
         source,
     };
-    std::fs::write(&temp, bytes).map_err(io_err)?;
+    std::fs::write(&temp, bytes).map_err(|e| {
+        let _ = std::fs::remove_file(&temp);
+        io_err(e)
+    })?;
     std::fs::rename(&temp, path).map_err(|e| {
         let _ = std::fs::remove_file(&temp);
         io_err(e)

@@ -31,6 +31,7 @@ use mpi::topology::SimpleCommunicator;
 use mpi::traits::{Communicator, CommunicatorCollectives, Equivalence, Root};
 
 use super::error::{agree, IoError};
+use super::guard;
 use super::redistribute::{BlockDistribution, Redistribution};
 use super::xdmf::{self, Center, NumberType, XdmfAttribute, XdmfDocument, XdmfMesh, XdmfStep};
 use crate::mesh::Mesh;
@@ -45,6 +46,30 @@ pub const FORMAT_VERSION: u32 = 1;
 /// (`f64`, `i64`, `u64`, `i32`, `u32`, ...).
 pub trait TableValue: H5Type + Equivalence + Copy + Default {}
 impl<T: H5Type + Equivalence + Copy + Default> TableValue for T {}
+
+/// Name of the attribute that every table carries: [`rows_checksum`] of its values.
+pub const CHECKSUM_ATTR: &str = "checksum";
+
+/// Checksum of the rows `first_row, first_row + 1, ...` of a table (`ncomp` values each):
+/// the wrapping sum over the rows of XXH3-64 of the row's bytes seeded with its global row
+/// index. Sums of the blocks of any partition of the rows add up to the whole table's, so
+/// every rank hashes only its own rows whatever the rank count; a changed byte changes its
+/// row's hash and so the sum (up to a 2^-64 chance), and rows swapped are caught by the seeds.
+pub fn rows_checksum<T: TableValue>(first_row: u64, ncomp: usize, values: &[T]) -> u64 {
+    values
+        .chunks(ncomp.max(1))
+        .zip(first_row..)
+        .fold(0u64, |sum, (row, i)| {
+            sum.wrapping_add(xxhash_rust::xxh3::xxh3_64_with_seed(raw::as_bytes(row), i))
+        })
+}
+
+/// The sum of every rank's partial [`rows_checksum`]. Collective.
+fn sum_over_ranks(comm: &SimpleCommunicator, partial: u64) -> u64 {
+    let mut all = vec![0u64; comm.size() as usize];
+    comm.all_gather_into(&partial, &mut all[..]);
+    all.iter().fold(0u64, |s, &x| s.wrapping_add(x))
+}
 
 /// The part of the mesh one rank owns, in global input-order indices.
 ///
@@ -221,6 +246,13 @@ pub struct ResultsFile {
     element_plan: Option<Redistribution>,
     steps: Vec<StepRecord>,
     published: bool,
+    /// A collective HDF5 operation failed: the file is not closed but abandoned
+    /// ([`guard::abandon`]), since its close could hang.
+    failed: std::cell::Cell<bool>,
+    /// Data ranges (dataset, offset, bytes) of the tables written, for the integrity record.
+    regions: Vec<(String, u64, u64)>,
+    /// Append the integrity record at close ([`ResultsFile::seal_on_close`]).
+    seal: bool,
 }
 
 impl ResultsFile {
@@ -243,8 +275,14 @@ impl ResultsFile {
             ))),
         };
         let temp_path = agree(&comm, temp_path)?;
+        let _watch = guard::watch(&format!("creating {}", temp_path.display()));
+        let room = match comm.rank() {
+            0 => guard::ensure_space(&temp_path, 0),
+            _ => Ok(()),
+        };
+        agree(&comm, room).inspect_err(|_| guard::abandon())?;
         let created = File::with_options()
-            .with_fapl(|f| f.mpio(comm.as_raw(), None))
+            .with_fapl(|f| f.mpio(comm.as_raw(), None).libver_v18())
             .create(&temp_path)
             .map_err(|e| IoError::hdf5(format!("creating {}", temp_path.display()), e));
         let file = agree(&comm, created)?;
@@ -259,6 +297,9 @@ impl ResultsFile {
             element_plan: None,
             steps: Vec::new(),
             published: false,
+            failed: std::cell::Cell::new(false),
+            regions: Vec::new(),
+            seal: false,
         };
         let n_ranks = out.comm.size() as u32;
         let root = out.file()?;
@@ -272,8 +313,14 @@ impl ResultsFile {
             Ok(())
         })()
         .map_err(|e| IoError::hdf5("writing the root attributes", e));
-        agree(&out.comm, written)?;
+        out.agreed(written)?;
         Ok(out)
+    }
+
+    /// Has [`ResultsFile::close_checked`] append the integrity record
+    /// ([`super::integrity`]) before the file takes its place (checkpoints).
+    pub fn seal_on_close(&mut self) {
+        self.seal = true;
     }
 
     /// The (duplicated) communicator of the file.
@@ -356,7 +403,7 @@ impl ResultsFile {
             Ok(())
         })()
         .map_err(|e| IoError::hdf5("writing the mesh attributes", e));
-        agree(&self.comm, written)?;
+        self.agreed(written)?;
         self.n_nodes = Some(mesh.n_nodes);
         self.n_elements = Some(mesh.n_elements);
         self.node_plan = Some(node_plan);
@@ -383,7 +430,7 @@ impl ResultsFile {
             Ok(())
         })()
         .map_err(|e| IoError::hdf5(format!("writing the attributes of {path}"), e));
-        agree(&self.comm, written)?;
+        self.agreed(written)?;
         self.steps.push(StepRecord {
             number,
             group: path,
@@ -454,7 +501,7 @@ impl ResultsFile {
             Ok(())
         })()
         .map_err(|e| IoError::hdf5(format!("writing the attributes of {dataset}"), e));
-        agree(&self.comm, written)?;
+        self.agreed(written)?;
         if let Some(step) = self.steps.last_mut() {
             step.fields.push(FieldRecord {
                 name: name.to_string(),
@@ -505,6 +552,9 @@ impl ResultsFile {
             Ok(())
         };
         agree(&self.comm, local)?;
+        let _watch = guard::watch(&format!("writing {dataset} to {}", self.temp_path.display()));
+        let bytes = n_global * ncomp as u64 * std::mem::size_of::<T>() as u64;
+        self.ensure_space(bytes)?;
         agree_text(
             &self.comm,
             "table layout",
@@ -526,10 +576,18 @@ impl ResultsFile {
                 .create(leaf)
                 .map_err(|e| IoError::hdf5(format!("creating {dataset}"), e))
         };
-        let ds = agree(&self.comm, created)?;
+        let ds = self.agreed(created)?;
+        if let Some(offset) = ds.offset() {
+            self.regions.push((dataset.to_string(), offset, bytes));
+        }
+        let first = rows.start;
         let written = raw::transfer_rows::<T>(&ds, rows, ncomp, raw::Buffer::Write(block))
             .map_err(|e| IoError::Layout(format!("collective write of {dataset}: {e}")));
-        agree(&self.comm, written)
+        self.agreed(written)?;
+        let checksum = sum_over_ranks(&self.comm, rows_checksum(first, ncomp, block));
+        let stamped = write_attr(&ds, CHECKSUM_ATTR, checksum)
+            .map_err(|e| IoError::hdf5(format!("writing the checksum of {dataset}"), e));
+        self.agreed(stamped)
     }
 
     /// Writes scalar attributes of the group at `group` (created if needed): unsigned integers
@@ -562,7 +620,7 @@ impl ResultsFile {
             Ok(())
         })()
         .map_err(|e| IoError::hdf5(format!("writing the attributes of {group}"), e));
-        agree(&self.comm, written)
+        self.agreed(written)
     }
 
     /// The XDMF description of what was written so far (for the file name of `path`).
@@ -621,13 +679,15 @@ impl ResultsFile {
 
     /// Closes the HDF5 file of the temporary path (if open). Collective.
     fn close_temp(&mut self) -> Result<(), IoError> {
+        let _watch = guard::watch(&format!("closing {}", self.temp_path.display()));
         let closed = match self.file.take() {
             Some(f) => f
                 .close()
                 .map_err(|e| IoError::hdf5(format!("closing {}", self.temp_path.display()), e)),
             None => Ok(()),
         };
-        agree(&self.comm, closed)
+        // on failure HDF5 may still hold the file: it must not be flushed at MPI finalization
+        self.agreed(closed)
     }
 
     /// Publishes the steps written so far: closes the HDF5 file, copies it to the target path
@@ -636,19 +696,14 @@ impl ResultsFile {
     /// continue writing. A run killed later leaves at the target the steps up to the last
     /// publish. Collective.
     pub fn publish(&mut self) -> Result<(), IoError> {
+        let _watch = guard::watch(&format!("publishing {}", self.final_path.display()));
         self.close_temp()?;
         let copied = if self.comm.rank() == 0 {
-            let copy = self.temp_path.with_extension("publish");
-            std::fs::copy(&self.temp_path, &copy)
-                .and_then(|_| std::fs::rename(&copy, &self.final_path))
-                .map_err(|source| IoError::File {
-                    path: self.final_path.clone(),
-                    source,
-                })
+            self.copy_to_target()
         } else {
             Ok(())
         };
-        agree(&self.comm, copied)?;
+        self.agreed(copied)?;
         let described = if self.comm.rank() == 0 && self.n_nodes.is_some() {
             xdmf::write(&self.xdmf_document(), &self.xdmf_path())
         } else {
@@ -656,7 +711,7 @@ impl ResultsFile {
         };
         agree(&self.comm, described)?;
         let reopened = File::with_options()
-            .with_fapl(|f| f.mpio(self.comm.as_raw(), None))
+            .with_fapl(|f| f.mpio(self.comm.as_raw(), None).libver_v18())
             .open_rw(&self.temp_path)
             .map_err(|e| IoError::hdf5(format!("reopening {}", self.temp_path.display()), e));
         self.file = Some(agree(&self.comm, reopened)?);
@@ -666,8 +721,23 @@ impl ResultsFile {
     /// Closes the HDF5 file, renames it over the target path and (if the mesh was written) has
     /// rank 0 write the XDMF file next to it. Collective; on error the temporary file is removed
     /// and an existing file at the target path is left as it was.
-    pub fn close(mut self) -> Result<(), IoError> {
+    pub fn close(self) -> Result<(), IoError> {
+        self.close_checked(|_| Ok(()))
+    }
+
+    /// [`ResultsFile::close`] with a check of the closed file before it replaces the target:
+    /// `verify` gets the temporary path (collective, e.g. [`ResultsReader::verify_tables`]); if
+    /// it fails, the temporary file is removed and the target left as it was.
+    pub fn close_checked(mut self, verify: impl FnOnce(&Path) -> Result<(), IoError>) -> Result<(), IoError> {
+        let _watch = guard::watch(&format!("closing {}", self.final_path.display()));
         self.close_temp()?;
+        let verified = verify(&self.temp_path);
+        self.agreed(verified)?;
+        let sealed = match (self.seal, self.comm.rank()) {
+            (true, 0) => super::integrity::seal(&self.temp_path, &self.regions),
+            _ => Ok(()),
+        };
+        self.agreed(sealed)?;
         let renamed = if self.comm.rank() == 0 {
             std::fs::rename(&self.temp_path, &self.final_path).map_err(|source| IoError::File {
                 path: self.final_path.clone(),
@@ -687,13 +757,59 @@ impl ResultsFile {
     }
 }
 
+impl ResultsFile {
+    /// [`agree`] for an outcome of HDF5 calls on the open file: a failure marks the file as
+    /// failed, and every open file as abandoned rather than closed ([`guard::abandon`]).
+    fn agreed<T>(&self, local: Result<T, IoError>) -> Result<T, IoError> {
+        let outcome = agree(&self.comm, local);
+        if outcome.is_err() {
+            self.failed.set(true);
+            guard::abandon();
+        }
+        outcome
+    }
+
+    /// Refuses, on every rank, a write of `bytes` that would leave less than the reserve free
+    /// on the file's file system ([`guard::ensure_space`]). Collective.
+    fn ensure_space(&self, bytes: u64) -> Result<(), IoError> {
+        let room = match self.comm.rank() {
+            0 => guard::ensure_space(&self.temp_path, bytes),
+            _ => Ok(()),
+        };
+        self.agreed(room)
+    }
+
+    /// Copies the closed temporary file over the target path through a second temporary name
+    /// (removed again if the copy fails), after checking the free space (rank 0).
+    fn copy_to_target(&self) -> Result<(), IoError> {
+        let size = std::fs::metadata(&self.temp_path).map_or(0, |m| m.len());
+        guard::ensure_space(&self.final_path, size)?;
+        let copy = self.temp_path.with_extension("publish");
+        std::fs::copy(&self.temp_path, &copy)
+            .and_then(|_| std::fs::rename(&copy, &self.final_path))
+            .map_err(|source| {
+                let _ = std::fs::remove_file(&copy);
+                IoError::File {
+                    path: self.final_path.clone(),
+                    source,
+                }
+            })
+    }
+}
+
 impl Drop for ResultsFile {
     /// A writer that was not published discards its temporary file (closing the HDF5 file is
     /// collective, like every HDF5 close under MPI-IO).
     fn drop(&mut self) {
         if let Some(file) = self.file.take() {
-            drop(file);
-            self.comm.barrier();
+            if self.failed.get() || guard::abandoned() {
+                std::mem::forget(file);
+                guard::abandon();
+            } else {
+                let _watch = guard::watch(&format!("closing {}", self.temp_path.display()));
+                drop(file);
+                self.comm.barrier();
+            }
         }
         if !self.published && self.comm.rank() == 0 {
             let _ = std::fs::remove_file(&self.temp_path);
@@ -719,6 +835,8 @@ pub struct ResultsReader {
     comm: SimpleCommunicator,
     file: File,
     path: PathBuf,
+    /// Refuse tables without a checksum ([`ResultsReader::requiring_checksums`]).
+    require_checksums: bool,
 }
 
 impl ResultsReader {
@@ -733,7 +851,12 @@ impl ResultsReader {
             .open(&path)
             .map_err(|e| IoError::hdf5(format!("opening {}", path.display()), e));
         let file = agree(&comm, opened)?;
-        let reader = ResultsReader { comm, file, path };
+        let reader = ResultsReader {
+            comm,
+            file,
+            path,
+            require_checksums: false,
+        };
         let checked = (|| {
             let format = reader.attr_string("/", "format")?;
             let version: u32 = read_attr(&reader.file, "/", "format_version")?;
@@ -752,6 +875,71 @@ impl ResultsReader {
     /// The communicator of the reader.
     pub fn comm(&self) -> &SimpleCommunicator {
         &self.comm
+    }
+
+    /// From now on every table read must carry its checksum attribute (checkpoints); without
+    /// this, a table without one (a file of an older cfrd) is read unchecked.
+    pub fn requiring_checksums(mut self) -> Self {
+        self.require_checksums = true;
+        self
+    }
+
+    /// The checksum stored with `dataset` (`None`: none stored and none required).
+    fn stored_checksum(&self, ds: &Dataset, dataset: &str) -> Result<Option<u64>, IoError> {
+        let corrupt = |what: &str| {
+            IoError::Layout(format!(
+                "{}: dataset {dataset} {what}: the file is corrupted or was not written by this cfrd",
+                self.path.display()
+            ))
+        };
+        match ds.attr(CHECKSUM_ATTR) {
+            Ok(a) => a
+                .read_scalar::<u64>()
+                .map(Some)
+                .map_err(|_| corrupt("has an unreadable checksum")),
+            Err(_) if self.require_checksums => Err(corrupt("has no checksum")),
+            Err(_) => Ok(None),
+        }
+    }
+
+    /// Reads every table of the file once, collectively, checking its checksum (which must be
+    /// there); returns the number of tables. Tables of `f64`, `i64`, `u64` and `u8`.
+    pub fn verify_tables(&self) -> Result<usize, IoError> {
+        use hdf5::types::{FloatSize, IntSize, TypeDescriptor as T};
+        let paths = self.dataset_paths();
+        let paths = agree(&self.comm, paths)?;
+        for p in &paths {
+            let kind = self.dataset(p).and_then(|d| {
+                d.dtype()
+                    .and_then(|t| t.to_descriptor())
+                    .map_err(|e| IoError::hdf5(p.clone(), e))
+            });
+            match agree(&self.comm, kind)? {
+                T::Float(FloatSize::U8) => self.read_block::<f64>(p).map(|_| ())?,
+                T::Integer(IntSize::U8) => self.read_block::<i64>(p).map(|_| ())?,
+                T::Unsigned(IntSize::U8) => self.read_block::<u64>(p).map(|_| ())?,
+                T::Unsigned(IntSize::U1) => self.read_block::<u8>(p).map(|_| ())?,
+                other => {
+                    return Err(IoError::Layout(format!(
+                        "{}: dataset {p} has the unexpected type {other:?}",
+                        self.path.display()
+                    )))
+                }
+            }
+        }
+        Ok(paths.len())
+    }
+
+    /// Compares a table's stored checksum with the one of the values read.
+    fn check_sum(&self, dataset: &str, stored: Option<u64>, computed: u64) -> Result<(), IoError> {
+        match stored {
+            Some(s) if s != computed => Err(IoError::Layout(format!(
+                "{}: dataset {dataset} does not match its checksum (stored {s:016x}, computed \
+                 {computed:016x}): the file is corrupted",
+                self.path.display()
+            ))),
+            _ => Ok(()),
+        }
     }
 
     /// Shape of a dataset (`[rows]` or `[rows, ncomp]`).
@@ -786,6 +974,10 @@ impl ResultsReader {
         let read = raw::transfer_rows::<T>(&ds, rows.clone(), ncomp, raw::Buffer::Read(&mut values))
             .map_err(|e| IoError::Layout(format!("collective read of {dataset}: {e}")));
         agree(&self.comm, read)?;
+        let stored = self.stored_checksum(&ds, dataset);
+        let stored = agree(&self.comm, stored)?;
+        let computed = sum_over_ranks(&self.comm, rows_checksum(rows.start, ncomp, &values));
+        agree(&self.comm, self.check_sum(dataset, stored, computed))?;
         Ok(TableBlock {
             rows,
             n_global,
@@ -819,6 +1011,8 @@ impl ResultsReader {
         let values = ds
             .read_raw::<T>()
             .map_err(|e| IoError::hdf5(format!("reading {dataset}"), e))?;
+        let stored = self.stored_checksum(&ds, dataset)?;
+        self.check_sum(dataset, stored, rows_checksum(0, ncomp, &values))?;
         Ok((values, ncomp))
     }
 
@@ -984,6 +1178,13 @@ mod raw {
     use hdf5_sys::h5i::hid_t;
     use hdf5_sys::h5p::{H5FD_mpio_xfer_t, H5Pclose, H5Pcreate, H5Pset_dxpl_mpio};
     use hdf5_sys::h5s::{H5S_seloper_t, H5Sclose, H5Screate_simple, H5Sselect_hyperslab, H5Sselect_none};
+
+    /// The bytes of a slice of plain numbers (the values as they are in memory).
+    pub(super) fn as_bytes<T: H5Type + Copy>(values: &[T]) -> &[u8] {
+        // SAFETY: table values are plain numbers (no padding, any bit pattern readable as
+        // bytes); the byte slice covers exactly the memory of `values` and borrows it.
+        unsafe { std::slice::from_raw_parts(values.as_ptr().cast::<u8>(), std::mem::size_of_val(values)) }
+    }
 
     /// The buffer of a transfer.
     pub(super) enum Buffer<'a, T> {

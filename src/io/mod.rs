@@ -8,6 +8,8 @@
 //! | [`xdmf`] | the XDMF 3 XML that ParaView opens |
 //! | [`summary`] | [`RunSummary`] JSON, [`PhaseTimer`], peak memory |
 //! | [`error`] | [`IoError`] and the rule that makes every error collective |
+//! | [`guard`] | I/O failures that end every rank: free-space checks, watchdog, exit code 4 |
+//! | [`integrity`] | the checksums appended to a checkpoint, checked before HDF5 reads it |
 //! | [`compare`] | `cfrd compare`: field differences between two results files |
 //! | [`outdir`] | `cfrd run`'s output directory: another run's files, stale temporaries |
 //! | [`preflight`] | checks of `cfrd run`'s file arguments before HDF5 opens them |
@@ -38,7 +40,8 @@
 //! /steps/000001                     attributes: step (u64, 1-based), time (f64), stage, label
 //!   <field>         f64 [n_nodes, ncomp] or [n_elements, ncomp] ([n] when ncomp = 1)
 //!                                   attributes: center = "node" | "element", units,
-//!                                   components (labels, e.g. "xx,yy,zz,xy,yz,zx")
+//!                                   components (labels, e.g. "xx,yy,zz,xy,yz,zx"),
+//!                                   checksum (u64, [`hdf5_out::rows_checksum`], on every table)
 //! /steps/000002 ...
 //! ```
 //!
@@ -104,7 +107,9 @@
 pub mod checkpoint;
 pub mod compare;
 pub mod error;
+pub mod guard;
 pub mod hdf5_out;
+pub mod integrity;
 pub mod outdir;
 pub mod preflight;
 pub mod redistribute;

@@ -41,6 +41,16 @@ pub fn cfrd_mpi(np: usize, dir: &Path, args: &[&str]) -> Output {
     cmd.output().expect("mpirun starts")
 }
 
+/// [`cfrd_mpi`] with extra environment variables (passed on to every rank).
+pub fn cfrd_mpi_env(np: usize, dir: &Path, args: &[&str], env: &[(&str, &str)]) -> Output {
+    let mut cmd = mpi_command(np);
+    for (k, v) in env {
+        cmd.env(k, v).args(["-x", k]);
+    }
+    cmd.arg(cfrd_bin()).args(args).current_dir(dir);
+    cmd.output().expect("mpirun starts")
+}
+
 /// Starts `cfrd ARGS` under `mpirun -n np` in `dir` without waiting (output discarded).
 pub fn cfrd_mpi_spawn(np: usize, dir: &Path, args: &[&str]) -> std::process::Child {
     let mut cmd = mpi_command(np);
