@@ -4,6 +4,8 @@
 //! * a checkpoint with a byte flipped anywhere (in each dataset's data, its first, middle and
 //!   last byte; elsewhere every 191st byte) is refused with exit code 2 naming the dataset or
 //!   the metadata bytes, or restarts to the bitwise result of the intact checkpoint;
+//! * one rank of a 2-rank run killed (SIGKILL) inside a stage ends the job within 60 s, and
+//!   the run restarts from its last checkpoint to the uninterrupted run's results bit for bit;
 //! * a disk that fills during a 2-rank run, at every point from the results file's creation to
 //!   the summary, ends every rank within 60 s with exit code 4 (I/O failure), leaves no
 //!   temporary file behind, and the checkpoint left in the directory (if any) restarts to the
@@ -17,6 +19,11 @@ use std::time::{Duration, Instant};
 
 /// The column of `tests/restart.rs`: 4 layers, 2 load steps each, GP rockfill.
 fn scene() -> String {
+    scene_with_steps(2)
+}
+
+/// [`scene`] with `steps` load steps per layer.
+fn scene_with_steps(steps: u32) -> String {
     let mut s = "name: gp-column-faults
 units: SI
 mesh:
@@ -30,7 +37,9 @@ blocks:
         s += &format!("  layer_{k}: {{ material: fill }}\n");
     }
     s += CONFINED_COLUMN_BOUNDARY;
-    s += "loads:\n  gravity: { g: [0.0, 0.0, -9.81] }\nsolver: { load_steps: 2 }\nstages:\n";
+    s += &format!(
+        "loads:\n  gravity: {{ g: [0.0, 0.0, -9.81] }}\nsolver: {{ load_steps: {steps} }}\nstages:\n"
+    );
     for k in 1..=4 {
         s += &format!("  - {{ name: fill_{k}, activate: [layer_{k}] }}\n");
     }
@@ -313,4 +322,63 @@ fn a_full_disk_ends_every_rank_with_the_io_exit_code_and_loses_nothing() {
         "a failure while writing a checkpoint"
     );
     assert!(seen.iter().any(|(_, (c, _))| *c == 0), "a disk large enough");
+}
+
+/// The `cfrd` rank processes under `mpirun` (pid `root`).
+fn ranks_of(root: u32) -> Vec<u32> {
+    process_tree(root)
+        .into_iter()
+        .filter(|p| std::fs::read_to_string(format!("/proc/{p}/comm")).is_ok_and(|c| c.trim() == "cfrd"))
+        .collect()
+}
+
+#[test]
+fn one_rank_killed_inside_a_stage_ends_the_job_and_the_run_restarts_bitwise() {
+    let dir = tempdir();
+    let d = dir.path();
+    std::fs::write(d.join("col.yaml"), scene_with_steps(6)).unwrap();
+    run_ok(2, d, &["run", "col.yaml", "-o", "full", "-q"]);
+    let mut child = cfrd_mpi_spawn(2, d, &["run", "col.yaml", "-o", "killed", "-q"]);
+    let t0 = Instant::now();
+    while !d.join("killed/checkpoint.h5").exists() {
+        assert!(
+            child.try_wait().unwrap().is_none(),
+            "ended before its first checkpoint"
+        );
+        assert!(
+            t0.elapsed() < Duration::from_secs(120),
+            "no checkpoint after 120 s"
+        );
+        std::thread::sleep(Duration::from_millis(2));
+    }
+    let ranks = ranks_of(child.id());
+    assert_eq!(ranks.len(), 2, "two rank processes: {ranks:?}");
+    let killed = std::process::Command::new("kill")
+        .args(["-KILL", &ranks[1].to_string()])
+        .status()
+        .unwrap();
+    assert!(killed.success());
+    let t_kill = Instant::now();
+    let status = loop {
+        if let Some(s) = child.try_wait().unwrap() {
+            break s;
+        }
+        assert!(
+            t_kill.elapsed() < Duration::from_secs(60),
+            "the job still runs 60 s after the kill"
+        );
+        std::thread::sleep(Duration::from_millis(20));
+    };
+    println!(
+        "job ended {:.2} s after one rank was killed ({status})",
+        t_kill.elapsed().as_secs_f64()
+    );
+    assert!(!status.success());
+    std::fs::copy(d.join("killed/checkpoint.h5"), d.join("kept.h5")).unwrap();
+    run_ok(
+        2,
+        d,
+        &["run", "col.yaml", "-o", "rest", "-q", "--restart", "kept.h5"],
+    );
+    assert_same_results(d, "full", "rest");
 }
