@@ -212,7 +212,9 @@
 //!
 //! PETSc options go into `solver.petsc_options`, or follow the command: every single-dash word
 //! with more than one letter is a PETSc option, taking the next word as its value unless that
-//! is an option or a YAML file, and options on the command line override the scene's:
+//! is an option or a YAML file (a negative number is a value), and options on the command line
+//! override the scene's. An option that no solver object read during the run (misspelled, or
+//! for a solver the run does not use) is named in a warning at its end:
 //!
 //! ```sh
 //! mpirun -n 8 cfrd run dam.yaml -o out/dam -ksp_type gmres -pc_type hypre

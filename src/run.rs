@@ -440,6 +440,7 @@ pub fn run_scene(
     }
     timer.stop();
     drop(problem);
+    warn_unused_options(rank, &petsc);
     drop(petsc);
 
     let mut summary = RunSummary::new(world, &scene.file.name);
@@ -477,6 +478,19 @@ pub fn run_scene(
         out_dir.join("summary.json").display()
     ));
     Ok(summary)
+}
+
+/// Prints (rank 0, also with `-q`) the PETSc options that no solver object read during the
+/// run: a misspelled option (`-ksp_rtoll`) would otherwise be ignored without a word.
+fn warn_unused_options(rank: i32, petsc: &Petsc) {
+    match petsc.unused_options() {
+        Ok(left) if rank == 0 && !left.is_empty() => eprintln!(
+            "warning: PETSc option(s) set but not used by any solver object: {} (misspelled, \
+             or for a solver this run does not use)",
+            left.join(", ")
+        ),
+        _ => {}
+    }
 }
 
 /// Writes the checkpoint ([`checkpoint::write`]) and returns the seconds it took. Collective.

@@ -338,7 +338,8 @@ fn a_compare_tolerance_that_is_not_a_finite_non_negative_number_exits_2() {
     }
 }
 
-/// Negative numbers after a PETSc option are its value, not options of cfrd's.
+/// Negative numbers after a PETSc option are its value, not options of cfrd's; an option that
+/// no solver object read is named in a warning.
 #[test]
 fn negative_petsc_option_values_reach_petsc() {
     let dir = tempdir();
@@ -349,7 +350,19 @@ fn negative_petsc_option_values_reach_petsc() {
             &["run", "scene.yaml", "-o", out, "-q", "-ksp_rtol", value],
         );
         assert!(o.status.success(), "-ksp_rtol {value}: {}", text(&o));
+        assert!(!text(&o).contains("not used"), "{}", text(&o));
     }
+    // a misspelled option is named at the end of the run (PETSc's unused-option record)
+    let o = cfrd(
+        dir.path(),
+        &["run", "scene.yaml", "-o", "c", "-q", "-ksp_rtoll", "1e-8"],
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    assert!(
+        text(&o).contains("warning: PETSc option(s) set but not used by any solver object: -ksp_rtoll 1e-8"),
+        "{}",
+        text(&o)
+    );
 }
 
 /// A directory given to `--restart` is one clear line, not the MPI-IO error stack.

@@ -86,6 +86,43 @@ impl Petsc {
         call!(PetscOptionsInsertString(null_mut(), c.as_ptr()))
     }
 
+    /// Options set (in the scene or on the command line) that no PETSc object has read so far,
+    /// as `-name value` (PETSc's own unused-option record, `PetscOptionsLeftGet`): at the end of
+    /// a run, misspelled options or options of a solver the run did not use.
+    pub fn unused_options(&self) -> Result<Vec<String>, PetscError> {
+        let mut n: p::PetscInt = 0;
+        let mut names: *mut *mut c_char = null_mut();
+        let mut values: *mut *mut c_char = null_mut();
+        call!(PetscOptionsLeftGet(null_mut(), &mut n, &mut names, &mut values))?;
+        let text = |list: *mut *mut c_char, i: usize| -> String {
+            // SAFETY: PETSc returned `n` entries in each list; an entry may be NULL (no value).
+            unsafe {
+                let s = *list.add(i);
+                if s.is_null() {
+                    String::new()
+                } else {
+                    CStr::from_ptr(s).to_string_lossy().into_owned()
+                }
+            }
+        };
+        let left = (0..n.max(0) as usize)
+            .map(|i| {
+                let (name, value) = (text(names, i), text(values, i));
+                match value.is_empty() {
+                    true => format!("-{name}"),
+                    false => format!("-{name} {value}"),
+                }
+            })
+            .collect();
+        call!(PetscOptionsLeftRestore(
+            null_mut(),
+            &mut n,
+            &mut names,
+            &mut values
+        ))?;
+        Ok(left)
+    }
+
     /// The communicator PETSc runs on.
     pub fn comm(&self) -> mpi::ffi::MPI_Comm {
         self.comm
