@@ -6,7 +6,7 @@
 //! in [`crate::performance`]; how to run them in [`crate::guide`].
 //!
 //! Contents: [solver checks](#solver-checks) · [rank-count independence](#rank-count-independence) ·
-//! [restart](#restart-and-runs-in-parts) · [bad input](#bad-input) ·
+//! [golden results](#golden-results) · [restart](#restart-and-runs-in-parts) · [bad input](#bad-input) ·
 //! [material points](#material-points) · [the seed dam](#the-seed-dam-figs-711) ·
 //! [coarse mesh](#coarse-mesh-the-three-interface-models) ·
 //! [medium mesh](#medium-mesh-the-three-interface-models) ·
@@ -52,6 +52,17 @@
 //!   and the same Newton iteration and cut-back counts (`seed_static_runs.csv`). The same holds
 //!   with one load step per stage, a much harder path with 29–30 cut-backs (hyperbolic and
 //!   Mohr–Coulomb checked, commit efe2165).
+//!
+//! ## Golden results
+//!
+//! `tests/goldens.rs` keeps the coarse seed runs of the three interface models in
+//! `tests/goldens/seed_coarse_<model>.json` (slab table of Figs. 8–9, crest settlement, open and
+//! slipping interface points, Newton counts per step, with commit, command, date and reason) and
+//! fails when a run on 2 ranks (and the GP-interface scene on 1 rank) moves a value by more than
+//! 1e-6 of its quantity's magnitude or a count at all; a slab Young's modulus 1 % higher moved
+//! the slab stresses by 5.2e-3 and the counts (a scratch run, measured), some 5000 times the
+//! tolerance. A change that moves them regenerates the files with a stated reason
+//! (`CFRD_UPDATE_GOLDENS=1`, documented in the test).
 //!
 //! ## Restart and runs in parts
 //!
