@@ -9,6 +9,7 @@
 //! | [`summary`] | [`RunSummary`] JSON, [`PhaseTimer`], peak memory |
 //! | [`error`] | [`IoError`] and the rule that makes every error collective |
 //! | [`compare`] | `cfrd compare`: field differences between two results files |
+//! | [`export`] | `cfrd export`: one step's fields as CSV, by set or probe |
 //! | [`outdir`] | `cfrd run`'s output directory: another run's files, stale temporaries |
 //! | [`preflight`] | checks of `cfrd run`'s file arguments before HDF5 opens them |
 //!
@@ -104,6 +105,7 @@
 pub mod checkpoint;
 pub mod compare;
 pub mod error;
+pub mod export;
 pub mod hdf5_out;
 pub mod outdir;
 pub mod preflight;
