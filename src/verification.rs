@@ -98,7 +98,9 @@
 //!
 //! `tests/bad_input.rs`: malformed YAML, unknown keys, a missing mesh, an inverted element, an
 //! unknown physical group, a wrong unit system, a modulus given in MPa, a negative modulus, an
-//! unknown node set and a bad PETSc option each exit with code 2 and a message naming the place,
+//! unknown node set, a gravity given as a number (the message shows `gravity: { g: [gx, gy,
+//! gz] }`) and a bad PETSc option each exit with code 2 and a message naming the place (a
+//! missing mesh as written and as resolved against the scene's folder),
 //! under `mpirun -n 2`, with no panic and no hang.
 //!
 //! ## Material points
