@@ -34,7 +34,12 @@ fn main() {
 
     let out = PathBuf::from(env::var("OUT_DIR").expect("OUT_DIR"));
     let header = out.join("petsc_wrapper.h");
-    std::fs::write(&header, "#include <petscsnes.h>\n").expect("write wrapper header");
+    // bindgen makes cargo watch this header: rewriting it (a newer mtime) would rebuild the crate
+    // at every cargo command, so it is written only when missing or different
+    let wrapper = "#include <petscsnes.h>\n";
+    if std::fs::read_to_string(&header).ok().as_deref() != Some(wrapper) {
+        std::fs::write(&header, wrapper).expect("write wrapper header");
+    }
 
     let mut builder = bindgen::Builder::default()
         .header(header.to_string_lossy())

@@ -255,6 +255,7 @@
 //! | `cfrd schema` | prints the JSON Schema of the scene format |
 //! | `cfrd partition SCENE -n N -o FILE` | METIS partition for N ranks, written to `FILE`; the scene then names it in `partition:` |
 //! | `cfrd compare A B [--tolerance T]` | largest absolute and relative difference of every field of every common step of two results files or run directories (steps matched by stage and time, so a restarted run compares with the uninterrupted one); with `--tolerance`, exit code 1 when a relative difference exceeds T |
+//! | `cfrd export RESULTS --field F... [--stage S \| --step N] [--set NAME [--scene SCENE]] [--probe X,Y,Z...] [-o FILE.csv]` | fields of one step of a results file (or run directory) as CSV, without HDF5 tools: the last step by default, or the last step of stage S, or step N; node fields (`displacement`, `reaction`) or element fields (`stress`, `strain`, `interface_*`), one or more of the same kind; every node or element, those of a block (`--set 'slab_*'`, `*` matches any characters), of a node or face set of the scene (`--scene`), or the nearest node or element centre to each probe point (with its distance). Columns: ids, coordinates, then `<field>_<component>_<units>`; interface fields in their local frame [s, a, n]. Values exactly as stored. Standard output without `-o`; exit code 2 names an unknown field, stage, step or set and lists the ones there are (`cfrd::io::export`, feature `native`) |
 //! | `cfrd overlay LABEL=DIR... -o FIG.png` | the slab profiles (seed Figs. 8, 9) of several runs in one figure, e.g. one per interface model |
 //! | `cfrd profiles SCENE RUN... -o DIR` | the seed Figs. 7–11 of a run from its results, over several parts of a run made in parts, in order |
 //! | `cfrd point TEST.yaml [-o DIR]` | material-point tests (drained triaxial, cyclic triaxial, oedometer, isotropic compression, interface direct shear under constant normal load or stiffness, model comparisons): CSV tables and a PNG figure; `inputs/point/` has an example of each and its `README.md` the format ([`crate::point`]) |
@@ -267,6 +268,9 @@
 //! cfrd schema > cfrd-scene.schema.json
 //! cfrd partition dam.yaml -n 8 -o dam.part
 //! cfrd compare out/hyp_1rank out/hyp_2ranks --tolerance 1e-6
+//! cfrd export out/hyp --stage impound_3 --field displacement --set 'slab_*' -o slab_u.csv
+//! cfrd export out/hyp --field interface_traction --probe 42,0,2711 --set 'interface_*'
+//! cfrd export out/hyp --field reaction --set foundation --scene inputs/scenes/seed_coarse_hyperbolic.yaml -o foundation.csv
 //! cfrd overlay hyperbolic=out/hyp gp=out/gp -o slab.png
 //! cfrd point inputs/point/interface_crosscheck.yaml -o out/point
 //! mpirun -n 2 cfrd bench solver --dofs 1000000

@@ -117,6 +117,38 @@ enum Command {
         #[arg(long, value_parser = parse_tolerance)]
         tolerance: Option<f64>,
     },
+    /// Write fields of one step of a results file as CSV: every node or element, a set, or the
+    /// nodes or elements nearest to probe points, e.g. `cfrd export out/dam --stage
+    /// impound_3 --field displacement --probe 244.4,0,2852 -o crest.csv` (standard output without
+    /// `-o`).
+    Export {
+        /// Results file or run directory.
+        results: PathBuf,
+        /// Field to write (repeatable; node fields or element fields, not both), e.g.
+        /// `displacement`, `reaction`, `stress`, `strain`, `interface_traction`.
+        #[arg(short = 'f', long = "field", required = true)]
+        fields: Vec<String>,
+        /// The last step of this stage (default: the last step of the file).
+        #[arg(long, conflicts_with = "step")]
+        stage: Option<String>,
+        /// The step with this number (1-based, as in `/steps/000003`).
+        #[arg(long)]
+        step: Option<u64>,
+        /// Only the nodes or elements of this set: an element block of the results (`*` matches
+        /// any characters), or with `--scene` a node set or face set of the scene's mesh.
+        #[arg(long)]
+        set: Option<String>,
+        /// The scene of the run, for its node and face sets.
+        #[arg(long)]
+        scene: Option<PathBuf>,
+        /// A point X,Y,Z (m): the nearest node, or the element with the nearest centre
+        /// (repeatable; among the rows of `--set` when given).
+        #[arg(long = "probe", value_name = "X,Y,Z", value_parser = cfrd::io::export::parse_probe)]
+        probes: Vec<[f64; 3]>,
+        /// Output CSV file (standard output without it).
+        #[arg(short = 'o', long = "out")]
+        out: Option<PathBuf>,
+    },
     /// Overlay the slab profiles (seed Figs. 8, 9) of several runs with `output.profiles`, e.g.
     /// one per interface model: `cfrd overlay hyperbolic=out/a mohr_coulomb=out/b -o fig.png`.
     Overlay {
@@ -281,6 +313,35 @@ fn main() -> ExitCode {
                 ExitCode::from(2)
             }
         },
+        Command::Export {
+            results,
+            fields,
+            stage,
+            step,
+            set,
+            scene,
+            probes,
+            out,
+        } => {
+            let step = match (stage, step) {
+                (Some(s), _) => cfrd::io::export::StepChoice::Stage(s),
+                (None, Some(n)) => cfrd::io::export::StepChoice::Number(n),
+                (None, None) => cfrd::io::export::StepChoice::Last,
+            };
+            let req = cfrd::io::export::ExportRequest {
+                results,
+                step,
+                fields,
+                rows: cfrd::io::export::RowChoice { set, scene, probes },
+            };
+            match export_fields(&req, out.as_deref()) {
+                Ok(()) => ExitCode::SUCCESS,
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    ExitCode::from(2)
+                }
+            }
+        }
         Command::Overlay { runs, out } => {
             let pairs: Result<Vec<(String, PathBuf)>, String> = runs
                 .iter()
@@ -443,6 +504,30 @@ fn profiles_of_parts(
     let files: Vec<PathBuf> = runs.iter().map(|r| cfrd::io::compare::results_file(r)).collect();
     std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
     cfrd::run::write_profiles_from_results(&s, spec, &files, out).map(|f| f.len())
+}
+
+/// `cfrd export`: the table of `req`, into `out` (with a line saying what was written) or to
+/// standard output.
+fn export_fields(req: &cfrd::io::export::ExportRequest, out: Option<&std::path::Path>) -> Result<(), String> {
+    use std::io::Write as _;
+    let table = cfrd::io::export::export(req)?;
+    match out {
+        Some(path) => {
+            std::fs::write(path, &table.csv).map_err(|e| format!("{}: {e}", path.display()))?;
+            println!(
+                "{}: {} row(s) of step {} (stage {})",
+                path.display(),
+                table.rows,
+                table.step,
+                table.stage
+            );
+        }
+        // a closed pipe (`cfrd export ... | head`) is not an error of the export
+        None => {
+            let _ = std::io::stdout().lock().write_all(table.csv.as_bytes());
+        }
+    }
+    Ok(())
 }
 
 /// `cfrd partition`: METIS on the scene's mesh (each construction band balanced, as `cfrd run`

@@ -6,7 +6,8 @@
 //! in [`crate::performance`]; how to run them in [`crate::guide`].
 //!
 //! Contents: [solver checks](#solver-checks) · [rank-count independence](#rank-count-independence) ·
-//! [restart](#restart-and-runs-in-parts) · [bad input](#bad-input) ·
+//! [golden results](#golden-results) · [restart](#restart-and-runs-in-parts) ·
+//! [hard cases](#hard-cases) · [bad input](#bad-input) ·
 //! [material points](#material-points) · [the seed dam](#the-seed-dam-figs-711) ·
 //! [coarse mesh](#coarse-mesh-the-three-interface-models) ·
 //! [medium mesh](#medium-mesh-the-three-interface-models) ·
@@ -53,6 +54,17 @@
 //!   with one load step per stage, a much harder path with 29–30 cut-backs (hyperbolic and
 //!   Mohr–Coulomb checked, commit efe2165).
 //!
+//! ## Golden results
+//!
+//! `tests/goldens.rs` keeps the coarse seed runs of the three interface models in
+//! `tests/goldens/seed_coarse_<model>.json` (slab table of Figs. 8–9, crest settlement, open and
+//! slipping interface points, Newton counts per step, with commit, command, date and reason) and
+//! fails when a run on 2 ranks (and the GP-interface scene on 1 rank) moves a value by more than
+//! 1e-6 of its quantity's magnitude or a count at all; a slab Young's modulus 1 % higher moved
+//! the slab stresses by 5.2e-3 and the counts (a scratch run, measured), some 5000 times the
+//! tolerance. A change that moves them regenerates the files with a stated reason
+//! (`CFRD_UPDATE_GOLDENS=1`, documented in the test).
+//!
 //! ## Restart and runs in parts
 //!
 //! * `tests/restart.rs`: a 2-rank run stopped, and one really killed, then restarted from its
@@ -71,11 +83,24 @@
 //!   moves this path-dependent solve: largest relative difference 7.1e-3 over all fields, 5
 //!   cut-backs instead of 6, 496 Newton iterations instead of 491.
 //!
+//! ## Hard cases
+//!
+//! `tests/hard_cases.rs` runs small scenes where dams push the solver (each converges with its
+//! cut-backs counted, no NaN in any output, results within stated bounds): one load step per
+//! stage on a GP embankment built in layers (5 cut-backs), freshly placed unconfined layers, GP
+//! rockfill pulled to 1.05 times its tension cut-off, slab–cushion interfaces opening at the
+//! crest under impoundment with each interface law, a slab on an 89.8° abutment, faces of a
+//! zero-thickness element 1e-10 m apart (and 1e-8 m apart refused), interfaces at σ_n = 100 Pa,
+//! and 10,000 small stress cycles at a rockfill GP point. Two cases fail and stay ignored with
+//! their measurements (below, known defects).
+//!
 //! ## Bad input
 //!
 //! `tests/bad_input.rs`: malformed YAML, unknown keys, a missing mesh, an inverted element, an
 //! unknown physical group, a wrong unit system, a modulus given in MPa, a negative modulus, an
-//! unknown node set and a bad PETSc option each exit with code 2 and a message naming the place,
+//! unknown node set, a gravity given as a number (the message shows `gravity: { g: [gx, gy,
+//! gz] }`) and a bad PETSc option each exit with code 2 and a message naming the place (a
+//! missing mesh as written and as resolved against the scene's folder),
 //! under `mpirun -n 2`, with no panic and no hang.
 //!
 //! ## Material points
@@ -246,6 +271,16 @@
 //!   `reversal_branch: trial` reads (I18) at the substep's trial point and follows both paths,
 //!   but changes the GP-interface results, so the seed scenes keep `start` until their figures
 //!   are redone ([`crate::material::interface_gp`]).
+//! * Interfaces whose normal stress is released to zero (`tests/hard_cases.rs`,
+//!   `interfaces_released_to_zero_normal_stress`, ignored): two blocks on a zero-thickness
+//!   layer pushed 2 mm sideways while a 100 Pa normal pressure goes to 0. Mohr–Coulomb and
+//!   hyperbolic stall at σ_n ≈ 0.03–0.04 Pa with relative residuals 1.1e-8 and 1.9e-8 against
+//!   newton_tol 1e-8 (absolute 1e-9 N): the reference force max(|f_ext|, |f_int|) vanishes with
+//!   σ_n; the GP interface stalls at σ_n = 54 Pa at its substepping tolerance.
+//! * The GP interface through the material-point driver (`cfrd point`, constant normal load):
+//!   10,000 cycles of ±0.2 mm at 200 kPa stop at step 203, the driver holding σ_n to 1e-8
+//!   relative below the interface's integration noise (STOL 1e-4); with `stol: 1.0e-8` all
+//!   40,002 steps run (`hard_cases::ten_thousand_small_cycles_at_a_gp_interface_point`, ignored).
 //! * Dynamics is verified on closed forms (below), not yet on the seed dam's quake (seed
 //!   Figs. 12–20); there is no modal stage (SLEPc) and no HHT-α yet.
 //!

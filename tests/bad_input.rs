@@ -221,6 +221,18 @@ fn cases() -> Vec<Case> {
             "[0.0, 0.0, 1e300] m/s²",
         ),
         (
+            "gravity as a scalar",
+            GOOD.replace("gravity: { g: [0.0, 0.0, -9.81] }", "gravity: 9.81"),
+            vec![],
+            "loads.gravity: a number (9.81) is not a gravity vector: write it as `gravity: { g: [gx, gy, gz] }`",
+        ),
+        (
+            "gravity g as a scalar",
+            GOOD.replace("g: [0.0, 0.0, -9.81]", "g: 9.81"),
+            vec![],
+            "e.g. `gravity: { g: [0.0, 0.0, -9.81] }`",
+        ),
+        (
             "no boundary",
             GOOD.replace("  - { set: zmin, fix: [x, y, z] }\n", "").replace("boundary:", "boundary: []"),
             vec![],
@@ -293,6 +305,39 @@ fn bad_input_exits_2_with_a_clear_message_at_two_ranks() {
             !dir.path().join("out/results.h5").exists(),
             "{case}: results written despite the error"
         );
+    }
+}
+
+/// A mesh file that is missing is named as the scene wrote it and as resolved against the
+/// scene's folder (not the working directory), absolute, so the user sees where it was looked
+/// for.
+#[test]
+fn a_missing_mesh_is_named_as_written_and_as_resolved_against_the_scene_folder() {
+    let dir = tempdir();
+    std::fs::create_dir_all(dir.path().join("dams")).unwrap();
+    let scene = GOOD.replace(
+        "box: { size: [1.0, 1.0, 2.0], divisions: [1, 1, 2] }",
+        "{ file: meshes/dam.msh }",
+    );
+    assert!(scene.contains("meshes/dam.msh"));
+    std::fs::write(dir.path().join("dams/scene.yaml"), scene).unwrap();
+    let resolved = dir.path().join("dams/meshes/dam.msh");
+    let expect = format!(
+        "dams/scene.yaml: mesh: file 'meshes/dam.msh' (as written; a relative path is taken from \
+         the scene's folder) is {}: cannot read mesh file: No such file or directory",
+        resolved.display()
+    );
+    for args in [["check", "dams/scene.yaml"], ["run", "dams/scene.yaml"]] {
+        let o = cfrd_mpi(2, dir.path(), &args);
+        let msg = text(&o);
+        println!("{}: {}", args[0], msg.lines().next().unwrap_or(""));
+        assert_eq!(o.status.code(), Some(2), "{msg}");
+        assert!(
+            msg.contains(&expect),
+            "{}: message lacks\n{expect}\n{msg}",
+            args[0]
+        );
+        assert!(!msg.contains("panicked"), "{msg}");
     }
 }
 

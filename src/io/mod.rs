@@ -11,6 +11,7 @@
 //! | [`guard`] | I/O failures that end every rank: free-space checks, watchdog, exit code 4 |
 //! | [`integrity`] | the checksums appended to a checkpoint, checked before HDF5 reads it |
 //! | [`compare`] | `cfrd compare`: field differences between two results files |
+//! | [`export`] | `cfrd export`: one step's fields as CSV, by set or probe |
 //! | [`outdir`] | `cfrd run`'s output directory: another run's files, stale temporaries |
 //! | [`preflight`] | checks of `cfrd run`'s file arguments before HDF5 opens them |
 //!
@@ -107,6 +108,7 @@
 pub mod checkpoint;
 pub mod compare;
 pub mod error;
+pub mod export;
 pub mod guard;
 pub mod hdf5_out;
 pub mod integrity;

@@ -186,11 +186,37 @@ pub struct LoadsSpec {
 }
 
 /// Gravity.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct GravitySpec {
     /// Gravity acceleration vector (m/s²).
     pub g: [f64; 3],
+}
+
+/// The form of `gravity` that error messages show.
+const GRAVITY_FORM: &str = "write it as `gravity: { g: [gx, gy, gz] }` in m/s², z up, \
+                            e.g. `gravity: { g: [0.0, 0.0, -9.81] }`";
+
+impl<'de> Deserialize<'de> for GravitySpec {
+    /// The mapping `{ g: [gx, gy, gz] }`; anything else (a scalar `9.81`, a bare list) is an
+    /// error that shows that form.
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        use serde::de::Error as _;
+        #[derive(Deserialize)]
+        #[serde(deny_unknown_fields)]
+        struct Form {
+            g: [f64; 3],
+        }
+        let given = |what: &str| D::Error::custom(format!("{what} is not a gravity vector: {GRAVITY_FORM}"));
+        match serde_yaml::Value::deserialize(d)? {
+            serde_yaml::Value::Number(n) => Err(given(&format!("a number ({n})"))),
+            serde_yaml::Value::Sequence(_) => Err(given("a bare list")),
+            v @ serde_yaml::Value::Mapping(_) => Form::deserialize(v)
+                .map(|f| GravitySpec { g: f.g })
+                .map_err(|e| D::Error::custom(format!("{e}: {GRAVITY_FORM}"))),
+            _ => Err(given("this value")),
+        }
+    }
 }
 
 /// A uniform pressure on a face set; positive pushes against the face (compression).

@@ -668,13 +668,7 @@ impl Scene {
 /// Reads or generates the mesh, then validates it; a generated CFRD also gives its schedule.
 fn build_mesh(src: &MeshSource, base: &Path) -> Result<(Mesh, Option<Vec<CfrdStage>>), String> {
     let (mesh, schedule) = match (&src.file, &src.box_, &src.dam, &src.cfrd) {
-        (Some(p), None, None, None) => {
-            let path: PathBuf = if p.is_absolute() { p.clone() } else { base.join(p) };
-            (
-                crate::mesh::gmsh::read_gmsh(&path).map_err(|e| e.to_string())?,
-                None,
-            )
-        }
+        (Some(p), None, None, None) => (read_mesh_file(p, base)?, None),
         (None, Some(b), None, None) => (generate::box_mesh(b).map_err(|e| e.to_string())?, None),
         (None, None, Some(d), None) => (generate::dam_mesh(d).map_err(|e| e.to_string())?, None),
         (None, None, None, Some(c)) => {
@@ -685,6 +679,28 @@ fn build_mesh(src: &MeshSource, base: &Path) -> Result<(Mesh, Option<Vec<CfrdSta
     };
     mesh.validate().map_err(|e| e.to_string())?;
     Ok((mesh, schedule))
+}
+
+/// Reads the Gmsh file `p` of a scene in the folder `base`. A file that cannot be read is named
+/// as written and, for a relative path, as resolved against the scene's folder.
+fn read_mesh_file(p: &Path, base: &Path) -> Result<Mesh, String> {
+    let path: PathBuf = if p.is_absolute() {
+        p.to_path_buf()
+    } else {
+        base.join(p)
+    };
+    crate::mesh::gmsh::read_gmsh(&path).map_err(|e| match e {
+        crate::mesh::MeshError::Unreadable { reason, .. } if !p.is_absolute() => {
+            let resolved = std::path::absolute(&path).unwrap_or(path);
+            format!(
+                "file '{}' (as written; a relative path is taken from the scene's folder) is {}: \
+                 cannot read mesh file: {reason}",
+                p.display(),
+                resolved.display()
+            )
+        }
+        other => other.to_string(),
+    })
 }
 
 /// FNV-1a hash (hex) of bytes.
