@@ -1,0 +1,89 @@
+#!/usr/bin/env bash
+# Fuzz campaign over cfrd's input readers (issue 23): every target of tests/fuzz runs RUNS
+# inputs under libFuzzer (coverage-guided, AddressSanitizer, debug assertions; nightly
+# toolchain), seeded from the repository's inputs, its kept corpus and tests/fuzz/seeds. Then
+# the corpus is minimized (libFuzzer's merge, as `cargo fuzz cmin`) into
+# tests/fuzz/corpus/<target>, which tests/fuzz_corpus.rs replays on stable, and any crasher
+# is copied there too. Prints one table row per target: inputs tried, their outcomes (accepted,
+# rejected with an error, skipped over the scene size budget), panics, aborts (out of memory,
+# sanitizer, other signals), time-outs, wall time and corpus size. Logs: out/fuzz/<target>.log.
+#
+#   scripts/fuzz_campaign.sh [RUNS]        # RUNS per target, default 100000
+#   TARGETS="gmsh scene" scripts/fuzz_campaign.sh 20000
+#
+# Limits per input: -timeout=10 s, -rss_limit_mb=2048, -malloc_limit_mb=2048, -max_len=8192.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+RUNS=${1:-100000}
+TARGETS=${TARGETS:-scene gmsh accel_csv accel_at2 state_codec}
+FUZZ=tests/fuzz
+LOGS=out/fuzz
+BIN=$FUZZ/target/x86_64-unknown-linux-gnu/release
+LIMITS=(-timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=2048 -max_len=8192)
+
+command -v cargo-fuzz >/dev/null || cargo install cargo-fuzz --locked
+cargo +nightly fuzz build --fuzz-dir "$FUZZ" --debug-assertions >&2
+mkdir -p "$LOGS"
+
+# Read-only seed folders of a target (the repository's own inputs and hand-written seeds).
+seeds() {
+    local dirs=("$FUZZ/seeds/$1")
+    case $1 in
+        scene) dirs+=(inputs/scenes) ;;
+        gmsh) dirs+=(inputs/meshes) ;;
+        accel_csv) dirs+=(inputs/accel) ;;
+    esac
+    for d in "${dirs[@]}"; do [ -d "$d" ] && echo "$d"; done
+}
+
+# The value after `key` in a log line such as `stat::number_of_executed_units: 100000`.
+fuzz_stat() { grep -a "^stat::$1:" "$2" | tail -1 | awk '{print $2}'; }
+
+# Counts of libFuzzer's findings in a log: panics, other aborts, time-outs.
+findings() {
+    local log=$1 panics aborts timeouts
+    panics=$(grep -ac "panicked at" "$log" || true)
+    timeouts=$(grep -ac "ERROR: libFuzzer: timeout" "$log" || true)
+    aborts=$(grep -acE "ERROR: libFuzzer: (out-of-memory|deadly signal|malloc limit)|ERROR: AddressSanitizer" "$log" || true)
+    aborts=$((aborts > panics ? aborts - panics : 0))
+    echo "$panics $aborts $timeouts"
+}
+
+printf '| target | inputs | accepted | rejected | skipped | panics | aborts | time-outs | time (s) | inputs/s | corpus files | corpus KiB |\n'
+printf '|---|---|---|---|---|---|---|---|---|---|---|---|\n'
+status=0
+for t in $TARGETS; do
+    corpus=$FUZZ/corpus/$t
+    artifacts=$FUZZ/artifacts/$t
+    log=$LOGS/$t.log
+    mkdir -p "$corpus" "$artifacts"
+    mapfile -t seed_dirs < <(seeds "$t")
+    start=$(date +%s.%N)
+    rc=0
+    "$BIN/$t" "$corpus" "${seed_dirs[@]}" -runs="$RUNS" "${LIMITS[@]}" -print_final_stats=1 \
+        -artifact_prefix="$artifacts/" >"$log" 2>&1 || rc=$?
+    seconds=$(awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN { printf "%.1f", b - a }')
+    for f in "$artifacts"/*; do [ -f "$f" ] && cp -n "$f" "$corpus/"; done
+    merged=$(mktemp -d)
+    "$BIN/$t" -merge=1 "$merged" "$corpus" "${seed_dirs[@]}" "${LIMITS[@]}" >"$LOGS/$t.merge.log" 2>&1 || true
+    if [ "$rc" -eq 0 ] && [ -n "$(ls -A "$merged")" ]; then
+        find "$corpus" -type f ! -name 'crash-*' ! -name 'oom-*' ! -name 'timeout-*' -delete
+        cp "$merged"/* "$corpus/"
+    fi
+    rm -rf "$merged"
+    runs=$(fuzz_stat number_of_executed_units "$log")
+    read -r accepted rejected skipped < <(grep -a "^cfrd-fuzz outcomes:" "$log" | tail -1 |
+        sed -E 's/.*accepted=([0-9]+) rejected=([0-9]+) skipped=([0-9]+).*/\1 \2 \3/')
+    read -r panics aborts timeouts < <(findings "$log")
+    files=$(find "$corpus" -type f | wc -l)
+    kib=$(find "$corpus" -type f -printf "%s\n" | awk '{ s += $1 } END { printf "%.0f", s / 1024 }')
+    rate=$(awk -v n="${runs:-0}" -v s="$seconds" 'BEGIN { printf "%.0f", n / s }')
+    printf '| %s | %s | %s | %s | %s | %s | %s | %s | %.0f | %s | %s | %s |\n' "$t" "${runs:-?}" \
+        "${accepted:-?}" "${rejected:-?}" "${skipped:-?}" "$panics" "$aborts" "$timeouts" \
+        "$seconds" "$rate" "$files" "$kib"
+    if [ "$rc" -ne 0 ]; then
+        echo "  $t: libFuzzer exited with $rc; the input is in $artifacts (see $log)" >&2
+        status=1
+    fi
+done
+exit $status
