@@ -2,9 +2,9 @@
 # Fuzz campaign over cfrd's input readers (issue 23): every target of tests/fuzz runs RUNS
 # inputs under libFuzzer (coverage-guided, AddressSanitizer, debug assertions; nightly
 # toolchain), seeded from the repository's inputs, its kept corpus and tests/fuzz/seeds. Then
-# the corpus is minimized (libFuzzer's merge, as `cargo fuzz cmin`) into
-# tests/fuzz/corpus/<target>, which tests/fuzz_corpus.rs replays on stable, and any crasher
-# is copied there too. Prints one table row per target: inputs tried, their outcomes (accepted,
+# the corpus is minimized (libFuzzer's set-cover merge on edge coverage, a smaller corpus than
+# `cargo fuzz cmin` keeps) into tests/fuzz/corpus/<target>, which tests/fuzz_corpus.rs replays
+# on stable, and any crasher is copied there too. Prints one table row per target: inputs tried, their outcomes (accepted,
 # rejected with an error, skipped over the scene size budget), panics, aborts (out of memory,
 # sanitizer, other signals), time-outs, wall time and corpus size. Logs: out/fuzz/<target>.log.
 #
@@ -12,6 +12,7 @@
 #   TARGETS="gmsh scene" scripts/fuzz_campaign.sh 20000
 #
 # Limits per input: -timeout=10 s, -rss_limit_mb=2048, -malloc_limit_mb=2048, -max_len=8192.
+# Dictionaries of scene keys and Gmsh section names: tests/fuzz/dict/<target>.dict.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 RUNS=${1:-100000}
@@ -58,14 +59,16 @@ for t in $TARGETS; do
     log=$LOGS/$t.log
     mkdir -p "$corpus" "$artifacts"
     mapfile -t seed_dirs < <(seeds "$t")
+    dict=()
+    [ -f "$FUZZ/dict/$t.dict" ] && dict=(-dict="$FUZZ/dict/$t.dict")
     start=$(date +%s.%N)
     rc=0
-    "$BIN/$t" "$corpus" "${seed_dirs[@]}" -runs="$RUNS" "${LIMITS[@]}" -print_final_stats=1 \
+    "$BIN/$t" "$corpus" "${seed_dirs[@]}" -runs="$RUNS" "${LIMITS[@]}" "${dict[@]}" -print_final_stats=1 \
         -artifact_prefix="$artifacts/" >"$log" 2>&1 || rc=$?
     seconds=$(awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN { printf "%.1f", b - a }')
     for f in "$artifacts"/*; do [ -f "$f" ] && cp -n "$f" "$corpus/"; done
     merged=$(mktemp -d)
-    "$BIN/$t" -merge=1 "$merged" "$corpus" "${seed_dirs[@]}" "${LIMITS[@]}" >"$LOGS/$t.merge.log" 2>&1 || true
+    "$BIN/$t" -set_cover_merge=1 -use_counters=0 "$merged" "$corpus" "${seed_dirs[@]}" "${LIMITS[@]}" >"$LOGS/$t.merge.log" 2>&1 || true
     if [ "$rc" -eq 0 ] && [ -n "$(ls -A "$merged")" ]; then
         find "$corpus" -type f ! -name 'crash-*' ! -name 'oom-*' ! -name 'timeout-*' -delete
         cp "$merged"/* "$corpus/"
