@@ -2,9 +2,9 @@
 # Fuzz campaign over cfrd's input readers (issue 23): every target of tests/fuzz runs RUNS
 # inputs under libFuzzer (coverage-guided, AddressSanitizer, debug assertions; nightly
 # toolchain), seeded from the repository's inputs, its kept corpus and tests/fuzz/seeds. Then
-# the corpus is minimized (libFuzzer's set-cover merge on edge coverage, a smaller corpus than
-# `cargo fuzz cmin` keeps) into tests/fuzz/corpus/<target>, which tests/fuzz_corpus.rs replays
-# on stable, and any crasher is copied there too. Prints one table row per target: inputs tried, their outcomes (accepted,
+# the corpus is minimized into tests/fuzz/corpus/<target> (libFuzzer's merge gives the edges
+# each input covers; a greedy set cover keeps at most CORPUS_CAP = 300 inputs, those adding the
+# most edges), which tests/fuzz_corpus.rs replays on stable; any crasher is copied there too. Prints one table row per target: inputs tried, their outcomes (accepted,
 # rejected with an error, skipped over the scene size budget), panics, aborts (out of memory,
 # sanitizer, other signals), time-outs, wall time and corpus size. Logs: out/fuzz/<target>.log.
 #
@@ -20,6 +20,7 @@ TARGETS=${TARGETS:-scene gmsh accel_csv accel_at2 state_codec}
 FUZZ=tests/fuzz
 LOGS=out/fuzz
 BIN=$FUZZ/target/x86_64-unknown-linux-gnu/release
+CORPUS_CAP=${CORPUS_CAP:-300}
 LIMITS=(-timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=2048 -max_len=8192)
 
 command -v cargo-fuzz >/dev/null || cargo install cargo-fuzz --locked
@@ -50,6 +51,49 @@ findings() {
     echo "$panics $aborts $timeouts"
 }
 
+# Greedy set cover of the edges in a libFuzzer merge control file, at most $2 files: prints the
+# chosen files, the one adding the most new edges first (lazy greedy).
+cover() {
+    python3 - "$1" "$2" <<'EOF'
+import heapq, sys
+lines = open(sys.argv[1]).read().split("\n")
+n = int(lines[0])
+files = lines[2 : 2 + n]
+cov = {int(l.split()[1]): set(l.split()[2:]) for l in lines[2 + n :] if l.startswith("COV ")}
+heap = [(-len(c), i) for i, c in cov.items()]
+heapq.heapify(heap)
+covered, chosen = set(), []
+while heap and len(chosen) < int(sys.argv[2]):
+    _, i = heapq.heappop(heap)
+    gain = len(cov[i] - covered)
+    if gain and heap and gain < -heap[0][0]:
+        heapq.heappush(heap, (-gain, i))
+    elif gain:
+        chosen.append(i)
+        covered |= cov[i]
+print("\n".join(files[i] for i in chosen))
+total = len(set().union(*cov.values())) if cov else 0
+print(f"kept {len(chosen)} files covering {len(covered)} of {total} edges", file=sys.stderr)
+EOF
+}
+
+# Replaces the corpus of target $1 (folder $2) by at most CORPUS_CAP files of it and of the seed
+# folders ($3...) that cover their edges; crashers stay.
+minimize() {
+    local t=$1 corpus=$2 work
+    shift 2
+    work=$(mktemp -d)
+    mkdir "$work/merged" "$work/keep"
+    "$BIN/$t" -merge=1 -merge_control_file="$work/control" "$work/merged" "$corpus" "$@" \
+        "${LIMITS[@]}" >"$LOGS/$t.merge.log" 2>&1
+    cover "$work/control" "$CORPUS_CAP" 2>>"$LOGS/$t.merge.log" | while read -r f; do
+        cp "$f" "$work/keep/"
+    done
+    find "$corpus" -type f ! -name 'crash-*' ! -name 'oom-*' ! -name 'timeout-*' -delete
+    cp "$work/keep"/* "$corpus/"
+    rm -rf "$work"
+}
+
 printf '| target | inputs | accepted | rejected | skipped | panics | aborts | time-outs | time (s) | inputs/s | corpus files | corpus KiB |\n'
 printf '|---|---|---|---|---|---|---|---|---|---|---|---|\n'
 status=0
@@ -67,13 +111,7 @@ for t in $TARGETS; do
         -artifact_prefix="$artifacts/" >"$log" 2>&1 || rc=$?
     seconds=$(awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN { printf "%.1f", b - a }')
     for f in "$artifacts"/*; do [ -f "$f" ] && cp -n "$f" "$corpus/"; done
-    merged=$(mktemp -d)
-    "$BIN/$t" -set_cover_merge=1 -use_counters=0 "$merged" "$corpus" "${seed_dirs[@]}" "${LIMITS[@]}" >"$LOGS/$t.merge.log" 2>&1 || true
-    if [ "$rc" -eq 0 ] && [ -n "$(ls -A "$merged")" ]; then
-        find "$corpus" -type f ! -name 'crash-*' ! -name 'oom-*' ! -name 'timeout-*' -delete
-        cp "$merged"/* "$corpus/"
-    fi
-    rm -rf "$merged"
+    [ "$rc" -eq 0 ] && minimize "$t" "$corpus" "${seed_dirs[@]}"
     runs=$(fuzz_stat number_of_executed_units "$log")
     read -r accepted rejected skipped < <(grep -a "^cfrd-fuzz outcomes:" "$log" | tail -1 |
         sed -E 's/.*accepted=([0-9]+) rejected=([0-9]+) skipped=([0-9]+).*/\1 \2 \3/')
