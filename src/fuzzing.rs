@@ -14,7 +14,7 @@
 //! | [`gmsh`] | [`crate::mesh::gmsh::parse_gmsh`] (MSH 2.2 and 4.1 detected from the header) | `mesh.file` |
 //! | [`accel_csv`] | [`Accelerogram::from_csv_str`] | `stages[k].dynamic.record` |
 //! | [`accel_at2`] | [`crate::seismic::at2::parse_at2`], then [`Accelerogram::from_components`] | `cfrd::seismic::read_at2` |
-//! | [`state_codec`] | [`crate::solver::state_codec`] decoders of every model | a checkpoint's `states` rows |
+//! | [`state_codec()`] | [`crate::solver::state_codec`] decoders of every model | a checkpoint's `states` rows |
 
 use crate::material::elastic::ElasticParams;
 use crate::material::{InterfaceParams, SolidParams};
@@ -120,11 +120,11 @@ pub fn accel_at2(bytes: &[u8]) -> Outcome {
     let Ok(text) = std::str::from_utf8(bytes) else {
         return Outcome::Rejected;
     };
-    let component = crate::seismic::at2::parse_at2(text, Path::new("<fuzz>"));
-    Outcome::of(component.map(|c| Accelerogram::from_components([Some(c), None, None])))
+    let component = crate::seismic::at2::parse_at2(text, Path::new("<fuzz>")).map_err(|e| e.to_string());
+    Outcome::of(component.and_then(|c| Accelerogram::from_components([Some(c), None, None])))
 }
 
-/// Elements in each block of [`state_codec`]: a decoded element index beyond them is refused.
+/// Elements in each block of [`state_codec()`]: a decoded element index beyond them is refused.
 const CODEC_ELEMENTS: usize = 2;
 
 /// An encoded element state through the checkpoint decoders. The first byte picks the model
@@ -143,7 +143,7 @@ pub fn state_codec(bytes: &[u8]) -> Outcome {
     }
 }
 
-/// Valid inputs of [`state_codec`]: the initial states of element 0 of every model, encoded
+/// Valid inputs of [`state_codec()`]: the initial states of element 0 of every model, encoded
 /// as a checkpoint stores them, behind the two selector bytes (seeds of the campaign).
 pub fn state_codec_examples() -> Vec<Vec<u8>> {
     let mut out = Vec::new();
