@@ -6,7 +6,8 @@
 # each input covers; a greedy set cover keeps at most CORPUS_CAP = 300 inputs, those adding the
 # most edges), which tests/fuzz_corpus.rs replays on stable; any crasher is copied there too. Prints one table row per target: inputs tried, their outcomes (accepted,
 # rejected with an error, skipped over the scene size budget), panics, aborts (out of memory,
-# sanitizer, other signals), time-outs, wall time and corpus size. Logs: out/fuzz/<target>.log.
+# sanitizer, other signals), time-outs, wall time, code edges covered and corpus size.
+# Logs: out/fuzz/<target>.log.
 #
 #   scripts/fuzz_campaign.sh [RUNS]        # RUNS per target, default 100000
 #   TARGETS="gmsh scene" scripts/fuzz_campaign.sh 20000
@@ -84,8 +85,12 @@ minimize() {
     shift 2
     work=$(mktemp -d)
     mkdir "$work/merged" "$work/keep"
-    "$BIN/$t" -merge=1 -merge_control_file="$work/control" "$work/merged" "$corpus" "$@" \
-        "${LIMITS[@]}" >"$LOGS/$t.merge.log" 2>&1
+    if ! "$BIN/$t" -merge=1 -merge_control_file="$work/control" "$work/merged" "$corpus" "$@" \
+        "${LIMITS[@]}" >"$LOGS/$t.merge.log" 2>&1; then
+        echo "  $t: the merge failed, the corpus is left as it is (see $LOGS/$t.merge.log)" >&2
+        rm -rf "$work"
+        return
+    fi
     cover "$work/control" "$CORPUS_CAP" 2>>"$LOGS/$t.merge.log" | while read -r f; do
         cp "$f" "$work/keep/"
     done
@@ -94,8 +99,8 @@ minimize() {
     rm -rf "$work"
 }
 
-printf '| target | inputs | accepted | rejected | skipped | panics | aborts | time-outs | time (s) | inputs/s | corpus files | corpus KiB |\n'
-printf '|---|---|---|---|---|---|---|---|---|---|---|---|\n'
+printf '| target | inputs | accepted | rejected | skipped | panics | aborts | time-outs | time (s) | inputs/s | edges | corpus files | corpus KiB |\n'
+printf '|---|---|---|---|---|---|---|---|---|---|---|---|---|\n'
 status=0
 for t in $TARGETS; do
     corpus=$FUZZ/corpus/$t
@@ -111,17 +116,18 @@ for t in $TARGETS; do
         -artifact_prefix="$artifacts/" >"$log" 2>&1 || rc=$?
     seconds=$(awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN { printf "%.1f", b - a }')
     for f in "$artifacts"/*; do [ -f "$f" ] && cp -n "$f" "$corpus/"; done
-    [ "$rc" -eq 0 ] && minimize "$t" "$corpus" "${seed_dirs[@]}"
+    if [ "$rc" -eq 0 ]; then minimize "$t" "$corpus" "${seed_dirs[@]}"; fi
     runs=$(fuzz_stat number_of_executed_units "$log")
     read -r accepted rejected skipped < <(grep -a "^cfrd-fuzz outcomes:" "$log" | tail -1 |
-        sed -E 's/.*accepted=([0-9]+) rejected=([0-9]+) skipped=([0-9]+).*/\1 \2 \3/')
-    read -r panics aborts timeouts < <(findings "$log")
+        sed -E 's/.*accepted=([0-9]+) rejected=([0-9]+) skipped=([0-9]+).*/\1 \2 \3/') || true
+    read -r panics aborts timeouts < <(findings "$log") || true
+    edges=$(grep -ao 'cov: [0-9]*' "$log" | tail -1 | awk '{print $2}')
     files=$(find "$corpus" -type f | wc -l)
     kib=$(find "$corpus" -type f -printf "%s\n" | awk '{ s += $1 } END { printf "%.0f", s / 1024 }')
     rate=$(awk -v n="${runs:-0}" -v s="$seconds" 'BEGIN { printf "%.0f", n / s }')
-    printf '| %s | %s | %s | %s | %s | %s | %s | %s | %.0f | %s | %s | %s |\n' "$t" "${runs:-?}" \
+    printf '| %s | %s | %s | %s | %s | %s | %s | %s | %.0f | %s | %s | %s | %s |\n' "$t" "${runs:-?}" \
         "${accepted:-?}" "${rejected:-?}" "${skipped:-?}" "$panics" "$aborts" "$timeouts" \
-        "$seconds" "$rate" "$files" "$kib"
+        "$seconds" "$rate" "${edges:-?}" "$files" "$kib"
     if [ "$rc" -ne 0 ]; then
         echo "  $t: libFuzzer exited with $rc; the input is in $artifacts (see $log)" >&2
         status=1
