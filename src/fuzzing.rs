@@ -219,9 +219,12 @@ fn interface_codec(model: u8, e: usize, encoded: &[u8]) -> Outcome {
     Outcome::Accepted
 }
 
+/// The entry function of a fuzz target: one input's bytes in, what the reader did out.
+pub type Entry = fn(&[u8]) -> Outcome;
+
 /// The fuzz targets by name (the folder names of `tests/fuzz/corpus`), each with its entry
 /// function.
-pub const TARGETS: [(&str, fn(&[u8]) -> Outcome); 5] = [
+pub const TARGETS: [(&str, Entry); 5] = [
     ("scene", scene),
     ("gmsh", gmsh),
     ("accel_csv", accel_csv),

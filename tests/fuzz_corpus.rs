@@ -3,7 +3,7 @@
 //! entry functions as the fuzz targets ([`cfrd::fuzzing`]). Every file must finish within
 //! [`BOUND`] without a panic; the reader may accept or reject it.
 
-use cfrd::fuzzing::{Outcome, TARGETS};
+use cfrd::fuzzing::{Entry, Outcome, TARGETS};
 use std::path::{Path, PathBuf};
 use std::sync::mpsc;
 use std::time::Duration;
@@ -25,7 +25,7 @@ fn corpus(target: &str) -> Vec<PathBuf> {
 
 /// Runs `entry` on the bytes of `file` in its own thread: the outcome, or why it failed (a
 /// panic, seen as the thread ending without an answer, or no answer within [`BOUND`]).
-fn replay(entry: fn(&[u8]) -> Outcome, file: &Path) -> Result<Outcome, String> {
+fn replay(entry: Entry, file: &Path) -> Result<Outcome, String> {
     let bytes = std::fs::read(file).map_err(|e| format!("{}: {e}", file.display()))?;
     let (tx, rx) = mpsc::channel();
     std::thread::spawn(move || {

@@ -3,7 +3,7 @@
 //! `cfrd-fuzz outcomes: accepted=A rejected=R skipped=S`, which `scripts/fuzz_campaign.sh`
 //! reads. A panic is not counted here: libFuzzer reports it as a crash and stops.
 
-use cfrd::fuzzing::Outcome;
+use cfrd::fuzzing::{Entry, Outcome};
 use libfuzzer_sys::Corpus;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Once;
@@ -16,7 +16,7 @@ static AT_EXIT: Once = Once::new();
 
 /// Runs `entry` on `data`, counts the outcome, and keeps the input out of the corpus when it
 /// was skipped.
-pub fn run(entry: fn(&[u8]) -> Outcome, data: &[u8]) -> Corpus {
+pub fn run(entry: Entry, data: &[u8]) -> Corpus {
     AT_EXIT.call_once(|| {
         // SAFETY: `print_counts` is a plain `extern "C" fn()` that only reads atomics and
         // writes to standard error; registering it has no other precondition.
