@@ -12,6 +12,10 @@ pub const MAX_SCENE_BYTES: u64 = 16 << 20;
 /// seed dam at the paper's resolution is some 10 MB as MSH text.
 pub const MAX_MESH_BYTES: u64 = 4 << 30;
 
+/// Largest ground-motion record file read (bytes): 1 GiB, above a CSV of the 10^7 time steps a
+/// dynamic stage may have.
+pub const MAX_RECORD_BYTES: u64 = 1 << 30;
+
 /// Reads the whole of the regular file `path`, at most `cap` bytes. A directory, device, FIFO
 /// or socket, and a file larger than `cap`, are refused with a message saying so (the caller
 /// adds the file name).

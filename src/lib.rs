@@ -24,6 +24,7 @@
 //! | [`plot`] | PNG line plots (figures of point tests and dam outputs) |
 //! | [`profiles`] | the seed's static outputs (Figs. 7–11): slab, interface and dam profiles, probes |
 //! | [`seismic`] | design spectrum, response spectra, artificial accelerograms, record readers, `cfrd accel` |
+//! | [`fuzzing`] | one input through one reader: the entry points of the fuzz targets and of their corpus replay |
 //!
 //! The native parallel stack (MPI, PETSc, parallel HDF5, METIS) is behind the default
 //! `native` feature; the constitutive library, the mesh code and the element kernels build
@@ -32,6 +33,7 @@
 pub mod conventions;
 pub mod element;
 pub mod error;
+pub mod fuzzing;
 pub mod guide;
 pub mod input;
 #[cfg(feature = "native")]

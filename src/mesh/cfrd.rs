@@ -256,6 +256,21 @@ impl CfrdSpec {
         self.slab_thickness_crest + self.slab_thickness_gradient * (self.crest_elevation() - z)
     }
 
+    /// About how many nodes the mesh has (an upper bound: the rockfill grid counted twice
+    /// stands for the grid, the slab and the plinth), the number checked against
+    /// [`super::generate::MAX_GENERATED_NODES`]; an invalid spec is an error as in
+    /// [`cfrd_mesh`]. Cheap: nothing of the mesh is built.
+    pub fn approximate_nodes(&self) -> Result<u128, MeshError> {
+        Ok(self.nodes_of(self.layout()?.panels))
+    }
+
+    /// The estimate of [`CfrdSpec::approximate_nodes`] for the panels of the left fan, the
+    /// central part and the right fan.
+    fn nodes_of(&self, panels: [usize; 3]) -> u128 {
+        let ny = panels.iter().map(|&p| p as u128).sum::<u128>() * self.elements_per_panel as u128;
+        (self.rockfill_elements as u128 + 3) * (ny + 1) * (self.fill_layers as u128 + 1) * 2
+    }
+
     /// Checks the values; errors name the YAML path `mesh.cfrd.<field>`.
     fn layout(&self) -> Result<Layout, MeshError> {
         positive("height", self.height)?;
@@ -451,8 +466,7 @@ impl CfrdSpec {
             n_central,
             ((fan_right / w).round() as usize).max(1),
         ];
-        let ny = panels.iter().map(|&p| p as u128).sum::<u128>() * self.elements_per_panel as u128;
-        let nodes = (self.rockfill_elements as u128 + 3) * (ny + 1) * (nz as u128 + 1) * 2;
+        let nodes = self.nodes_of(panels);
         let most = super::generate::MAX_GENERATED_NODES;
         if nodes > most as u128 {
             return Err(invalid(

@@ -18,10 +18,10 @@ use std::path::Path;
 /// Standard gravity (m/s²) used to convert g to m/s².
 pub const STANDARD_GRAVITY: f64 = 9.80665;
 
-/// Reads one component from a PEER NGA AT2 file (format in the module docs).
+/// Reads one component from a PEER NGA AT2 file (format in the module docs): a regular file of
+/// at most [`crate::input::MAX_RECORD_BYTES`].
 pub fn read_at2(path: &Path) -> Result<AccelComponent, RecordError> {
-    let text = std::fs::read_to_string(path).map_err(|e| RecordError::file(path, e.to_string()))?;
-    parse_at2(&text, path)
+    parse_at2(&super::record::read_record_text(path)?, path)
 }
 
 /// Parses the text of an AT2 file; `file` names it in errors.

@@ -202,10 +202,10 @@ impl Accelerogram {
         std::fs::write(path, self.to_csv_string()).map_err(|e| RecordError::file(path, e.to_string()))
     }
 
-    /// Reads a record CSV file (format in the module docs).
+    /// Reads a record CSV file (format in the module docs): a regular file of at most
+    /// [`crate::input::MAX_RECORD_BYTES`].
     pub fn read_csv(path: &Path) -> Result<Self, RecordError> {
-        let text = std::fs::read_to_string(path).map_err(|e| RecordError::file(path, e.to_string()))?;
-        Accelerogram::from_csv_str(&text, path)
+        Accelerogram::from_csv_str(&read_record_text(path)?, path)
     }
 
     /// Parses the CSV text of a record; `file` names it in errors.
@@ -239,6 +239,14 @@ impl Accelerogram {
         Accelerogram::new(times.get(1).copied().unwrap_or(0.0), x, y, z)
             .map_err(|m| RecordError::file(file, m))
     }
+}
+
+/// The UTF-8 text of the record file `path`, a regular file of at most
+/// [`crate::input::MAX_RECORD_BYTES`] (a device or FIFO is refused, not read without end).
+pub fn read_record_text(path: &Path) -> Result<String, RecordError> {
+    let bytes = crate::input::read_bounded(path, crate::input::MAX_RECORD_BYTES)
+        .map_err(|reason| RecordError::file(path, reason))?;
+    String::from_utf8(bytes).map_err(|e| RecordError::file(path, format!("not UTF-8 text: {e}")))
 }
 
 /// The four finite numbers of a CSV data row.
@@ -311,6 +319,16 @@ mod tests {
             assert_eq!(bits(&a), bits(&b), "{}", axis.name());
         }
         assert_eq!(std::fs::read_to_string(&path).unwrap(), b.to_csv_string());
+    }
+
+    /// A device is refused, not read without end (CSV and AT2 alike).
+    #[test]
+    fn devices_are_refused() {
+        let dev = Path::new("/dev/zero");
+        let msg = Accelerogram::read_csv(dev).expect_err("a device").to_string();
+        assert!(msg.contains("not a regular file"), "{msg}");
+        let msg = crate::seismic::read_at2(dev).expect_err("a device").to_string();
+        assert!(msg.contains("not a regular file"), "{msg}");
     }
 
     /// a_g(t) interpolates linearly and is zero outside the record.
