@@ -338,19 +338,8 @@ fn one_rank_killed_inside_a_stage_ends_the_job_and_the_run_restarts_bitwise() {
     let d = dir.path();
     std::fs::write(d.join("col.yaml"), scene_with_steps(6)).unwrap();
     run_ok(2, d, &["run", "col.yaml", "-o", "full", "-q"]);
-    let mut child = cfrd_mpi_spawn(2, d, &["run", "col.yaml", "-o", "killed", "-q"]);
-    let t0 = Instant::now();
-    while !d.join("killed/checkpoint.h5").exists() {
-        assert!(
-            child.try_wait().unwrap().is_none(),
-            "ended before its first checkpoint"
-        );
-        assert!(
-            t0.elapsed() < Duration::from_secs(120),
-            "no checkpoint after 120 s"
-        );
-        std::thread::sleep(Duration::from_millis(2));
-    }
+    let args = ["run", "col.yaml", "-o", "killed", "-q"];
+    let (mut child, _) = cfrd_mpi_until(2, d, &args, "killed/checkpoint.h5");
     let ranks = ranks_of(child.id());
     assert_eq!(ranks.len(), 2, "two rank processes: {ranks:?}");
     let killed = std::process::Command::new("kill")

@@ -8,7 +8,7 @@
 mod common;
 use common::*;
 use std::path::Path;
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 const STAGES: usize = 4;
 
@@ -203,20 +203,8 @@ fn restart_after_stage_two_is_bitwise_exact() {
 /// Runs `col.yaml` on 2 ranks into `killed/` and kills it as soon as its first checkpoint
 /// appears; returns the exit status and the start time.
 fn run_until_first_checkpoint(d: &Path) -> (std::process::ExitStatus, Instant) {
-    let ckpt = d.join("killed/checkpoint.h5");
-    let mut child = cfrd_mpi_spawn(2, d, &["run", "col.yaml", "-o", "killed", "-q"]);
-    let t0 = Instant::now();
-    while !ckpt.exists() {
-        assert!(
-            child.try_wait().unwrap().is_none(),
-            "the run ended before its first checkpoint"
-        );
-        assert!(
-            t0.elapsed() < Duration::from_secs(120),
-            "no checkpoint after 120 s"
-        );
-        std::thread::sleep(Duration::from_millis(2));
-    }
+    let args = ["run", "col.yaml", "-o", "killed", "-q"];
+    let (mut child, t0) = cfrd_mpi_until(2, d, &args, "killed/checkpoint.h5");
     (kill_tree(&mut child), t0)
 }
 

@@ -62,6 +62,30 @@ pub fn cfrd_mpi_spawn(np: usize, dir: &Path, args: &[&str]) -> std::process::Chi
     cmd.spawn().expect("mpirun starts")
 }
 
+/// Starts `cfrd ARGS` under `mpirun -n np` in `dir` and waits until `file` (relative to `dir`)
+/// exists; panics if the run ends first or after 120 s. Returns the run and its start time.
+pub fn cfrd_mpi_until(
+    np: usize,
+    dir: &Path,
+    args: &[&str],
+    file: &str,
+) -> (std::process::Child, std::time::Instant) {
+    let mut child = cfrd_mpi_spawn(np, dir, args);
+    let t0 = std::time::Instant::now();
+    while !dir.join(file).exists() {
+        assert!(
+            child.try_wait().unwrap().is_none(),
+            "the run ended before {file} appeared"
+        );
+        assert!(
+            t0.elapsed() < std::time::Duration::from_secs(120),
+            "no {file} after 120 s"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(2));
+    }
+    (child, t0)
+}
+
 /// The process `pid` and all its descendants (from `/proc`), parents first.
 pub fn process_tree(pid: u32) -> Vec<u32> {
     let mut parent_of = Vec::new();
