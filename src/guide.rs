@@ -361,10 +361,13 @@
 //! and refuses it on every rank otherwise (exit code 4, naming the file and the bytes free and
 //! needed). A write that fails anyway is never followed by a collective close (which could
 //! hang); the ranks end with exit code 4 and remove their temporary files. A rank that stays
-//! longer than `CFRD_IO_TIMEOUT` seconds (default 300) inside one collective file operation
-//! prints what it was writing and ends with exit code 4, and `mpirun` ends the others; files it
-//! leaves (`.results.h5.partial-<pid>`) are named and removed by the next run into that
-//! directory. `CFRD_IO_RESERVE` (bytes) changes the reserve; the fault tests set it to 0 to
+//! too long inside one collective file operation prints what it was writing and ends with exit
+//! code 4, and `mpirun` ends the others: 45 s plus the operation's bytes at 4 MiB/s by default
+//! (a few seconds more for a checkpoint of the fine seed mesh), `CFRD_IO_TIMEOUT` seconds if
+//! set. Files it leaves (`.results.h5.partial-<pid>`) are named and removed by the next run
+//! into that directory. Figures, tables and the summary are written under a temporary name
+//! (`.fig08_slab_stress.partial-<pid>.png`) and renamed once complete, so a full disk while
+//! they are written leaves no truncated file. `CFRD_IO_RESERVE` (bytes) changes the reserve; the fault tests set it to 0 to
 //! meet a full disk inside HDF5.
 //!
 //! Every checkpoint is read back after it is written and before it replaces the previous one,

@@ -1,6 +1,7 @@
 //! Reading input files (scenes, meshes) with bounds: only regular files are read, and only up to
 //! a documented size, so a device such as `/dev/zero` or a FIFO is refused instead of being read
-//! without end.
+//! without end. Output files that are written whole (tables, summaries) are replaced only by
+//! complete ones ([`write_replacing`]).
 
 use std::io::Read;
 use std::path::Path;
@@ -60,6 +61,26 @@ pub fn file_kind(meta: &std::fs::Metadata) -> &'static str {
     } else {
         "of another kind"
     }
+}
+
+/// Writes `bytes` to `path` through the temporary file `.<name>.partial-<pid>` in the same
+/// directory, renamed into place once complete: an existing file is replaced only by a complete
+/// one, and a failed write (a full disk) removes the temporary file and leaves no truncated
+/// output. Call on one rank only.
+pub fn write_replacing(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    let name = path
+        .file_name()
+        .ok_or_else(|| std::io::Error::new(std::io::ErrorKind::InvalidInput, "not a file path"))?;
+    let temp = path.with_file_name(format!(
+        ".{}.partial-{}",
+        name.to_string_lossy(),
+        std::process::id()
+    ));
+    let written = std::fs::write(&temp, bytes).and_then(|()| std::fs::rename(&temp, path));
+    if written.is_err() {
+        let _ = std::fs::remove_file(&temp);
+    }
+    written
 }
 
 #[cfg(test)]

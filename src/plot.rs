@@ -194,12 +194,28 @@ impl Figure {
     }
 
     /// Renders the figure into a PNG file.
+    ///
+    /// The PNG is drawn into a temporary file `.<stem>.partial-<pid>.png` beside `path` and
+    /// renamed over it once complete, so a failed write (a full disk) never leaves a truncated
+    /// figure; the temporary file is removed on failure.
     pub fn save_png(&self, path: &Path) -> Result<(), PlotError> {
         ensure_font()?;
-        let draw_err = |e: &dyn std::fmt::Display| PlotError::Draw {
-            path: path.to_path_buf(),
-            message: e.to_string(),
-        };
+        let temp = temporary_png(path);
+        let drawn = self
+            .draw_png(&temp)
+            .and_then(|()| std::fs::rename(&temp, path).map_err(|e| e.to_string()));
+        drawn.map_err(|message| {
+            let _ = std::fs::remove_file(&temp);
+            PlotError::Draw {
+                path: path.to_path_buf(),
+                message,
+            }
+        })
+    }
+
+    /// Renders the figure into the PNG file `path`; the error in words.
+    fn draw_png(&self, path: &Path) -> Result<(), String> {
+        let draw_err = |e: &dyn std::fmt::Display| readable_draw_error(&e.to_string());
         let cols = self.columns.clamp(1, self.panels.len().max(1));
         let rows = self.panels.len().div_ceil(cols).max(1);
         let (w, h) = self.panel_size;
@@ -219,6 +235,31 @@ impl Figure {
             draw_panel(panel, area).map_err(|e| draw_err(&e))?;
         }
         root.present().map_err(|e| draw_err(&e))
+    }
+}
+
+/// The temporary file of [`Figure::save_png`] for `path`: `.<stem>.partial-<pid>.png` (the
+/// encoder picks the format from the extension).
+fn temporary_png(path: &Path) -> PathBuf {
+    let stem = path
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    path.with_file_name(format!(".{stem}.partial-{}.png", std::process::id()))
+}
+
+/// The plotters/image error text `message` in words: the operating system's reason (e.g. "No
+/// space left on device") where it holds one, else the text as it is.
+fn readable_draw_error(message: &str) -> String {
+    const REASONS: [&str; 4] = [
+        "No space left on device",
+        "Disk quota exceeded",
+        "Permission denied",
+        "Read-only file system",
+    ];
+    match REASONS.iter().find(|r| message.contains(*r)) {
+        Some(reason) => reason.to_string(),
+        None => message.to_string(),
     }
 }
 

@@ -507,7 +507,7 @@ pub fn overlay_slab_profiles(runs: &[(String, PathBuf)], png: &Path) -> Result<u
 /// Writes the CSV `name` into `dir` and records it in `files`.
 fn csv_out(dir: &Path, files: &mut Vec<PathBuf>, name: &str, text: String) -> Result<(), ProfilesError> {
     let path = dir.join(name);
-    std::fs::write(&path, text).map_err(|source| ProfilesError::Io {
+    crate::input::write_replacing(&path, text.as_bytes()).map_err(|source| ProfilesError::Io {
         path: path.clone(),
         source,
     })?;

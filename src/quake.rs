@@ -147,12 +147,14 @@ pub fn write_quake_outputs(scene: &Scene, h5: &Path, dir: &Path) -> Result<Vec<P
         dir.join("quake_crest.png"),
         dir.join("quake_summary.json"),
     ];
-    std::fs::write(&files[0], csv).map_err(|e| format!("{}: {e}", files[0].display()))?;
+    crate::input::write_replacing(&files[0], csv.as_bytes())
+        .map_err(|e| format!("{}: {e}", files[0].display()))?;
     crest_figure(&h)
         .save_png(&files[1])
         .map_err(|e| format!("{}: {e}", files[1].display()))?;
     let json = serde_json::to_string_pretty(&summarize(scene, &h)).map_err(|e| e.to_string())?;
-    std::fs::write(&files[2], json).map_err(|e| format!("{}: {e}", files[2].display()))?;
+    crate::input::write_replacing(&files[2], json.as_bytes())
+        .map_err(|e| format!("{}: {e}", files[2].display()))?;
     Ok(files.to_vec())
 }
 

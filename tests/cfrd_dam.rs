@@ -9,7 +9,7 @@ use cfrd::element::hex8::{face_pressure_load, volume};
 use cfrd::mesh::cfrd::{cfrd_mesh, CfrdSpec};
 use common::*;
 
-const MESH: &str = "{ fill_layers: 4, panel_width: 60.0, elements_per_panel: 1, rockfill_elements: 2, impoundment_stages: 2 }";
+const MESH: &str = SMALL_DAM_MESH;
 const RHO_FILL: f64 = 2150.0;
 const RHO_SLAB: f64 = 2400.0;
 const G: f64 = 9.81;
@@ -19,37 +19,14 @@ fn scene() -> String {
     dam_scene(
         &format!("{{ model: elastic, young: 3.0e8, poisson: 0.3, density: {RHO_FILL} }}"),
         "{ petsc_options: '-ksp_type preonly -pc_type lu -pc_factor_mat_solver_type mumps' }",
-        "output: { profiles: { probes: [ { name: I-A, elevation: 2711.0 } ] } }",
+        SEED_FIGURES,
     )
 }
 
-/// The small generated dam with the fill material `fill`, the solver settings `solver` and an
-/// extra last line `tail` (YAML flow mappings).
+/// The small generated dam with the fill material `fill`, the hyperbolic interface, the solver
+/// settings `solver` and an extra last line `tail` (YAML flow mappings).
 fn dam_scene(fill: &str, solver: &str, tail: &str) -> String {
-    format!(
-        "name: cfrd-small
-units: SI
-mesh:
-  cfrd: {MESH}
-materials:
-  fill: {fill}
-  slab: {{ model: elastic, young: 25.5e9, poisson: 0.167, density: {RHO_SLAB} }}
-  interface: {{ model: hyperbolic }}
-  joint: {{ model: joint }}
-blocks:
-  'fill_*': {{ material: fill }}
-  'slab_*': {{ material: slab }}
-  'interface_*': {{ material: interface }}
-  'joint_*': {{ material: joint }}
-boundary:
-  - {{ set: foundation, fix: [x, y, z] }}
-  - {{ set: plinth, fix: [x, y, z] }}
-loads:
-  gravity: {{ g: [0.0, 0.0, -{G}] }}
-solver: {solver}
-{tail}
-"
-    )
+    small_dam(fill, "hyperbolic", RHO_SLAB, "", solver, tail)
 }
 
 #[test]

@@ -9,8 +9,13 @@
 //! * a disk that fills during a 2-rank run, at every point from the results file's creation to
 //!   the summary, ends every rank within 60 s with exit code 4 (I/O failure), leaves no
 //!   temporary file behind, and the checkpoint left in the directory (if any) restarts to the
-//!   uninterrupted run's results bit for bit. Needs root for a small tmpfs; skipped otherwise,
-//!   with the reason printed.
+//!   uninterrupted run's results bit for bit;
+//! * a disk that fills after the results, while the small generated dam writes its seed figures
+//!   (Figs. 7–11) or its summary, ends every rank within 60 s with exit code 4, and leaves the
+//!   results and every file written before intact and no truncated figure or temporary file.
+//!
+//! The disk tests need root for a small tmpfs; they are skipped otherwise, with the reason
+//! printed.
 
 mod common;
 use common::*;
@@ -322,6 +327,117 @@ fn a_full_disk_ends_every_rank_with_the_io_exit_code_and_loses_nothing() {
         "a failure while writing a checkpoint"
     );
     assert!(seen.iter().any(|(_, (c, _))| *c == 0), "a disk large enough");
+}
+
+/// Bytes in use on the file system holding `path` (`df`).
+fn used_bytes(path: &Path) -> u64 {
+    let o = std::process::Command::new("df")
+        .args(["-B1", "--output=used"])
+        .arg(path)
+        .output()
+        .expect("df");
+    let out = String::from_utf8_lossy(&o.stdout);
+    let used = out.lines().nth(1).map(str::trim).and_then(|l| l.parse().ok());
+    used.unwrap_or_else(|| panic!("df {}: {out}", path.display()))
+}
+
+/// The small generated dam on 2 ranks, without checkpoints (so the results file is never
+/// copied and the disk is fullest at the end), into a tmpfs of `size` bytes. A failure must be
+/// exit 4 within 60 s naming what was written, leave no temporary file, and leave every file it
+/// wrote equal byte for byte to the run in `full/`. Returns the exit code and the error line.
+fn fill_disk_at_the_end(d: &Path, size: u64) -> (i32, String) {
+    let disk = SmallDisk::mount(d, &size.to_string()).expect("mounted before");
+    let out = disk.at.join("run");
+    let t0 = Instant::now();
+    let args = [
+        "run",
+        "dam.yaml",
+        "-o",
+        out.to_str().unwrap(),
+        "-q",
+        "--checkpoint",
+        "none",
+    ];
+    let o = cfrd_mpi(2, d, &args);
+    let (elapsed, code, msg) = (t0.elapsed(), o.status.code().unwrap_or(-1), text(&o));
+    assert!(elapsed < Duration::from_secs(60), "{size}: {elapsed:?}");
+    assert!(code == 0 || code == 4, "{size}: exit {code}: {msg}");
+    for entry in std::fs::read_dir(&out).unwrap().flatten() {
+        let name = entry.file_name().to_string_lossy().into_owned();
+        assert!(!name.starts_with('.'), "{size}: temporary {name} left: {msg}");
+        if name != "results.h5" {
+            let same =
+                std::fs::read(entry.path()).unwrap() == std::fs::read(d.join("full").join(&name)).unwrap();
+            assert!(same, "{size}: {name} differs from the full run's (truncated?)");
+        }
+    }
+    if out.join("results.h5").exists() {
+        assert_same_results(d, "full", out.to_str().unwrap());
+    }
+    let line = msg
+        .lines()
+        .find(|l| l.starts_with("error:"))
+        .unwrap_or("")
+        .to_string();
+    assert!(code == 0 || line.starts_with("error: writing"), "{size}: {msg}");
+    (code, line)
+}
+
+/// A disk that fills while the seed figures (Figs. 7–11) or the run summary are written, after
+/// the results are complete: every rank ends with exit code 4 within 60 s, the results are
+/// intact, and no truncated figure, table or temporary file is left (issue 23, acceptance 3).
+#[test]
+fn a_full_disk_while_figures_or_summary_are_written_ends_with_exit_4_and_loses_nothing() {
+    let dir = tempdir();
+    let d = dir.path();
+    // the canonical LU: two runs write the same bytes, so a file left can be compared whole
+    let lu = "{ linear_solver: canonical_lu }";
+    let scene = small_dam(ELASTIC_FILL, "hyperbolic", 2400.0, "", lu, SEED_FIGURES);
+    std::fs::write(d.join("dam.yaml"), scene).unwrap();
+    let probe = match SmallDisk::mount(d, "16m") {
+        Ok(p) => p,
+        Err(reason) => {
+            println!("skipped: a small disk is needed and cannot be mounted here ({reason})");
+            return;
+        }
+    };
+    let o = cfrd_mpi(
+        2,
+        d,
+        &[
+            "run",
+            "dam.yaml",
+            "-o",
+            probe.at.join("run").to_str().unwrap(),
+            "-q",
+            "--checkpoint",
+            "none",
+        ],
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    let used = used_bytes(&probe.at);
+    run_ok(
+        2,
+        d,
+        &["run", "dam.yaml", "-o", "full", "-q", "--checkpoint", "none"],
+    );
+    drop(probe);
+    let mut seen = Vec::new();
+    for short in [4096, 8192, 100 << 10, 300 << 10, 500 << 10] {
+        seen.push(fill_disk_at_the_end(d, used - short));
+    }
+    for (code, line) in &seen {
+        println!("exit {code} {line}");
+    }
+    let failed_in = |what: &str| seen.iter().any(|(c, l)| *c == 4 && l.contains(what));
+    assert!(
+        failed_in("writing the profiles"),
+        "a failure while writing a figure"
+    );
+    assert!(
+        failed_in("writing the run summary"),
+        "a failure while writing the summary"
+    );
 }
 
 /// The `cfrd` rank processes under `mpirun` (pid `root`).

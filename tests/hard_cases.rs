@@ -347,30 +347,13 @@ stages:
 /// so the case is about the slab and the interface, and runs in seconds), the slab-cushion
 /// interface `law`, slab density `rho_slab`, and `mesh_extra` keys of `mesh.cfrd`.
 fn dam_scene(law: &str, rho_slab: f64, mesh_extra: &str) -> String {
-    format!(
-        "name: hard-dam
-units: SI
-mesh:
-  cfrd: {{ fill_layers: 4, panel_width: 60.0, elements_per_panel: 1, rockfill_elements: 2,
-          impoundment_stages: 2{mesh_extra} }}
-materials:
-  fill: {{ model: elastic, young: 3.0e8, poisson: 0.3, density: 2150.0 }}
-  slab: {{ model: elastic, young: 25.5e9, poisson: 0.167, density: {rho_slab:.1} }}
-  interface: {{ model: {law} }}
-  joint: {{ model: joint }}
-blocks:
-  'fill_*': {{ material: fill }}
-  'slab_*': {{ material: slab }}
-  'interface_*': {{ material: interface }}
-  'joint_*': {{ material: joint }}
-boundary:
-  - {{ set: foundation, fix: [x, y, z] }}
-  - {{ set: plinth, fix: [x, y, z] }}
-loads:
-  gravity: {{ g: [0.0, 0.0, -9.81] }}
-solver: {{ newton_tol: 1.0e-5, newton_max_iterations: 15, load_steps: 2, linear_solver: canonical_lu }}
-output: {{ profiles: {{ probes: [ {{ name: I-A, elevation: 2711.0 }} ] }} }}
-"
+    small_dam(
+        ELASTIC_FILL,
+        law,
+        rho_slab,
+        mesh_extra,
+        "{ newton_tol: 1.0e-5, newton_max_iterations: 15, load_steps: 2, linear_solver: canonical_lu }",
+        SEED_FIGURES,
     )
 }
 

@@ -116,24 +116,11 @@ pub fn agree<T>(comm: &SimpleCommunicator, local: Result<T, IoError>) -> Result<
 /// Writes `bytes` to `path` through a temporary file in the same directory that is renamed into
 /// place, so an existing file is replaced only by a complete one (call on one rank only).
 pub fn write_atomic(path: &std::path::Path, bytes: &[u8]) -> Result<(), IoError> {
-    let name = path
-        .file_name()
-        .ok_or_else(|| IoError::Usage(format!("{}: not a file path", path.display())))?;
-    let temp = path.with_file_name(format!(
-        ".{}.partial-{}",
-        name.to_string_lossy(),
-        std::process::id()
-    ));
-    let io_err = |source| IoError::File {
+    if path.file_name().is_none() {
+        return Err(IoError::Usage(format!("{}: not a file path", path.display())));
+    }
+    crate::input::write_replacing(path, bytes).map_err(|source| IoError::File {
         path: path.to_path_buf(),
         source,
-    };
-    std::fs::write(&temp, bytes).map_err(|e| {
-        let _ = std::fs::remove_file(&temp);
-        io_err(e)
-    })?;
-    std::fs::rename(&temp, path).map_err(|e| {
-        let _ = std::fs::remove_file(&temp);
-        io_err(e)
     })
 }

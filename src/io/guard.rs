@@ -15,10 +15,12 @@
 //!    results and checkpoint file, whose HDF5 handles are then leaked, rank 0 removes their
 //!    temporary files, and the process ends with the I/O exit code without finalizing MPI
 //!    ([`exit_now`]), so HDF5's shutdown does not flush them;
-//! 3. runs every collective file operation under a watchdog ([`watch`]): a rank that is still
-//!    inside one after [`io_timeout`] seconds (environment variable `CFRD_IO_TIMEOUT`, default
-//!    300) prints what it was doing and ends with the I/O exit code, and `mpirun` then ends the
-//!    other ranks.
+//! 3. runs every collective file operation under a watchdog ([`watch`], [`watch_sized`]): a
+//!    rank that is still inside one after [`io_timeout`] seconds prints what it was doing and
+//!    ends with the I/O exit code, and `mpirun` then ends the other ranks. The limit is
+//!    `CFRD_IO_TIMEOUT` seconds if set; by default [`BASE_TIMEOUT_S`] plus the operation's bytes
+//!    at [`SLOWEST_BYTES_PER_S`], so a hung small write ends the job within a minute while a
+//!    large file on a slow parallel file system still has time to be written.
 //!
 //! The exit code of every I/O and environment failure is [`EXIT_IO`] (4), distinct from input
 //! errors (2) and solver failures (3).
@@ -36,23 +38,30 @@ pub use crate::parallel::EXIT_IO;
 /// final flush at close.
 pub const RESERVE_BYTES: u64 = 512 * 1024;
 
-/// Default of `CFRD_IO_TIMEOUT`, seconds.
-const DEFAULT_TIMEOUT_S: u64 = 300;
+/// Seconds any collective file operation may take by default, whatever its size.
+pub const BASE_TIMEOUT_S: u64 = 45;
+
+/// The slowest rate (bytes per second) at which a file operation is still taken as progressing
+/// when no `CFRD_IO_TIMEOUT` is set: 4 MiB/s, far below a local disk or a parallel file system.
+pub const SLOWEST_BYTES_PER_S: u64 = 4 << 20;
 
 static ABANDONED: AtomicBool = AtomicBool::new(false);
 /// Deadline of the collective operation in progress (milliseconds since the epoch; 0: none).
 static DEADLINE_MS: AtomicU64 = AtomicU64::new(0);
 static WHAT: Mutex<String> = Mutex::new(String::new());
+/// The limit of the operation in progress, seconds (for the message).
+static LIMIT_S: AtomicU64 = AtomicU64::new(0);
 static WATCHDOG: Once = Once::new();
 
-/// Seconds a rank may spend inside one collective file operation (`CFRD_IO_TIMEOUT`, default
-/// 300; a value that is not a positive integer gives the default).
-pub fn io_timeout() -> u64 {
+/// Seconds a rank may spend inside one collective file operation on `bytes` bytes:
+/// `CFRD_IO_TIMEOUT` if it is a positive integer, else [`BASE_TIMEOUT_S`] plus `bytes` at
+/// [`SLOWEST_BYTES_PER_S`].
+pub fn io_timeout(bytes: u64) -> u64 {
     std::env::var("CFRD_IO_TIMEOUT")
         .ok()
         .and_then(|v| v.trim().parse::<u64>().ok())
         .filter(|&s| s > 0)
-        .unwrap_or(DEFAULT_TIMEOUT_S)
+        .unwrap_or(BASE_TIMEOUT_S + bytes / SLOWEST_BYTES_PER_S)
 }
 
 fn now_ms() -> u64 {
@@ -66,17 +75,25 @@ pub struct Watch {
     outer: bool,
 }
 
-/// Starts watching the collective file operation `what` (a nested call extends the outer one's
-/// watch). See the module docs.
+/// Starts watching the collective file operation `what` on a few bytes (metadata): a
+/// [`watch_sized`] of 0 bytes.
 pub fn watch(what: &str) -> Watch {
+    watch_sized(what, 0)
+}
+
+/// Starts watching the collective file operation `what` that moves `bytes` bytes (a nested
+/// call runs under the outer one's watch). See the module docs.
+pub fn watch_sized(what: &str, bytes: u64) -> Watch {
     WATCHDOG.call_once(|| {
         std::thread::spawn(watchdog);
     });
-    let deadline = now_ms() + 1000 * io_timeout();
+    let limit = io_timeout(bytes);
+    let deadline = now_ms() + 1000 * limit;
     let outer = DEADLINE_MS
         .compare_exchange(0, deadline, Ordering::SeqCst, Ordering::SeqCst)
         .is_ok();
     if outer {
+        LIMIT_S.store(limit, Ordering::SeqCst);
         if let Ok(mut w) = WHAT.lock() {
             *w = what.to_string();
         }
@@ -102,7 +119,7 @@ fn watchdog() {
                 "error: {what} did not finish within {} s on this rank (a full or failing file \
                  system?); the job ends with exit code {EXIT_IO}; the last checkpoint is intact \
                  (CFRD_IO_TIMEOUT sets the limit)",
-                io_timeout()
+                LIMIT_S.load(Ordering::SeqCst)
             );
             exit_now(EXIT_IO);
         }

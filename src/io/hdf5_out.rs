@@ -552,8 +552,11 @@ impl ResultsFile {
             Ok(())
         };
         agree(&self.comm, local)?;
-        let _watch = guard::watch(&format!("writing {dataset} to {}", self.temp_path.display()));
         let bytes = n_global * ncomp as u64 * std::mem::size_of::<T>() as u64;
+        let _watch = guard::watch_sized(
+            &format!("writing {dataset} to {}", self.temp_path.display()),
+            bytes,
+        );
         self.ensure_space(bytes)?;
         agree_text(
             &self.comm,
@@ -696,7 +699,10 @@ impl ResultsFile {
     /// continue writing. A run killed later leaves at the target the steps up to the last
     /// publish. Collective.
     pub fn publish(&mut self) -> Result<(), IoError> {
-        let _watch = guard::watch(&format!("publishing {}", self.final_path.display()));
+        let _watch = guard::watch_sized(
+            &format!("publishing {}", self.final_path.display()),
+            file_size(&self.temp_path),
+        );
         self.close_temp()?;
         let copied = if self.comm.rank() == 0 {
             self.copy_to_target()
@@ -729,7 +735,10 @@ impl ResultsFile {
     /// `verify` gets the temporary path (collective, e.g. [`ResultsReader::verify_tables`]); if
     /// it fails, the temporary file is removed and the target left as it was.
     pub fn close_checked(mut self, verify: impl FnOnce(&Path) -> Result<(), IoError>) -> Result<(), IoError> {
-        let _watch = guard::watch(&format!("closing {}", self.final_path.display()));
+        let _watch = guard::watch_sized(
+            &format!("closing {}", self.final_path.display()),
+            file_size(&self.temp_path),
+        );
         self.close_temp()?;
         let verified = verify(&self.temp_path);
         self.agreed(verified)?;
@@ -1289,6 +1298,12 @@ mod raw {
             }
         })
     }
+}
+
+/// Size of the file at `path` in bytes (0 when it cannot be read): the bytes a publish copies
+/// and a checked close reads back, for the watchdog's limit ([`guard::watch_sized`]).
+fn file_size(path: &Path) -> u64 {
+    std::fs::metadata(path).map_or(0, |m| m.len())
 }
 
 #[cfg(test)]

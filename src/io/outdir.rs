@@ -131,18 +131,24 @@ fn stale_temporaries(dir: &Path) -> Result<Vec<(PathBuf, String)>, String> {
     Ok(out)
 }
 
-/// Whether `name` is a temporary file of a run: `Some(Some(pid))` for `.<file>.partial-<pid>`,
-/// `Some(None)` for `.<file>.publish`, `None` otherwise.
+/// Whether `name` is a temporary file of a run: `Some(Some(pid))` for `.<file>.partial-<pid>`
+/// (any file written whole, [`crate::input::write_replacing`]) and `.<stem>.partial-<pid>.png`
+/// (a figure, [`crate::plot::Figure::save_png`]), `Some(None)` for `.<file>.publish` of
+/// [`TEMP_OF`], `None` otherwise.
 fn temporary_owner(name: &str) -> Option<Option<u32>> {
     let rest = name.strip_prefix('.')?;
-    TEMP_OF.iter().find_map(|file| {
-        let tail = rest.strip_prefix(file)?;
-        match tail.strip_prefix(".partial-") {
-            Some(pid) => pid.parse().ok().map(Some),
-            None if tail == ".publish" => Some(None),
-            None => None,
-        }
-    })
+    if TEMP_OF
+        .iter()
+        .any(|file| rest.strip_prefix(file) == Some(".publish"))
+    {
+        return Some(None);
+    }
+    let (file, pid) = rest.rsplit_once(".partial-")?;
+    let pid = pid.strip_suffix(".png").unwrap_or(pid);
+    match file.is_empty() || !pid.bytes().all(|b| b.is_ascii_digit()) {
+        true => None,
+        false => pid.parse().ok().map(Some),
+    }
 }
 
 /// Whether a process with id `pid` runs (Linux `/proc`; a zombie, a killed process not yet
@@ -209,17 +215,24 @@ mod tests {
     fn stale_temporaries_are_named_and_removed_live_ones_refused() {
         let dead = u32::MAX - 1;
         let stale = format!(".results.h5.partial-{dead}");
+        let figure = format!(".fig08_slab_stress.partial-{dead}.png");
+        let table = format!(".fig08_slab_stress.csv.partial-{dead}");
         let dir = dir_with(&[
             &stale,
+            &figure,
+            &table,
             ".checkpoint.h5.publish",
             ".results.h5.partialx",
+            ".fig.partial-12x.png",
             "notes.txt",
         ]);
         let d = dir.path();
         let notes = prepare_output_dir(d, None, false).expect("stale files only");
-        assert_eq!(notes.len(), 2, "{notes:?}");
+        assert_eq!(notes.len(), 4, "{notes:?}");
         assert!(notes.iter().any(|n| n.contains(&stale)), "{notes:?}");
         assert!(!d.join(&stale).exists() && !d.join(".checkpoint.h5.publish").exists());
+        assert!(!d.join(&figure).exists() && !d.join(&table).exists());
+        assert!(d.join(".fig.partial-12x.png").exists());
         assert!(d.join(".results.h5.partialx").exists() && d.join("notes.txt").exists());
         let live = format!(".checkpoint.h5.partial-{}", std::os::unix::process::parent_id());
         std::fs::write(d.join(&live), b"x").unwrap();

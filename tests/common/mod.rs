@@ -199,3 +199,51 @@ pub const CONFINED_COLUMN_BOUNDARY: &str = "boundary:
   - { set: ymin, fix: [y] }
   - { set: ymax, fix: [y] }
 ";
+
+/// The mesh of [`small_dam`]: the generated seed-shaped dam at its smallest useful size.
+pub const SMALL_DAM_MESH: &str = "{ fill_layers: 4, panel_width: 60.0, elements_per_panel: 1, rockfill_elements: 2, impoundment_stages: 2 }";
+
+/// Elastic rockfill of [`small_dam`] (the tests' usual fill).
+pub const ELASTIC_FILL: &str = "{ model: elastic, young: 3.0e8, poisson: 0.3, density: 2150.0 }";
+
+/// The seed figures' outputs (Figs. 7–11) with the probe I-A, a last line for [`small_dam`].
+pub const SEED_FIGURES: &str = "output: { profiles: { probes: [ { name: I-A, elevation: 2711.0 } ] } }";
+
+/// The small generated CFRD (its whole schedule: fill, slab stages, impoundment) with the fill
+/// material `fill`, the slab-cushion interface model `interface`, slab density `rho_slab`,
+/// extra `mesh.cfrd` keys `mesh_extra` (", key: value"), solver settings `solver` and an extra
+/// last line `tail` (YAML flow mappings).
+pub fn small_dam(
+    fill: &str,
+    interface: &str,
+    rho_slab: f64,
+    mesh_extra: &str,
+    solver: &str,
+    tail: &str,
+) -> String {
+    let mesh = SMALL_DAM_MESH.replace(" }", &format!("{mesh_extra} }}"));
+    format!(
+        "name: cfrd-small
+units: SI
+mesh:
+  cfrd: {mesh}
+materials:
+  fill: {fill}
+  slab: {{ model: elastic, young: 25.5e9, poisson: 0.167, density: {rho_slab:.1} }}
+  interface: {{ model: {interface} }}
+  joint: {{ model: joint }}
+blocks:
+  'fill_*': {{ material: fill }}
+  'slab_*': {{ material: slab }}
+  'interface_*': {{ material: interface }}
+  'joint_*': {{ material: joint }}
+boundary:
+  - {{ set: foundation, fix: [x, y, z] }}
+  - {{ set: plinth, fix: [x, y, z] }}
+loads:
+  gravity: {{ g: [0.0, 0.0, -9.81] }}
+solver: {solver}
+{tail}
+"
+    )
+}
