@@ -30,6 +30,7 @@
 //! `native` feature; the constitutive library, the mesh code and the element kernels build
 //! and test without it (`cargo test --no-default-features --lib`).
 
+pub mod accuracy;
 pub mod conventions;
 pub mod element;
 pub mod error;

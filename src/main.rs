@@ -159,6 +159,22 @@ enum Command {
         #[arg(short = 'o', long = "out")]
         out: PathBuf,
     },
+    /// Compare runs of one dam with a reference run: the error of the slab stresses and
+    /// deflection (seed Figs. 8, 9) and of the crest settlement after impoundment, against each
+    /// run's wall time (`accuracy_cost.csv` and `accuracy_cost.png` in the output directory;
+    /// `scripts/accuracy_cost.sh` makes the runs).
+    Accuracy {
+        /// The most accurate run, holding `fig08_slab_stress.csv`, `fig07_dam_displacement.csv`
+        /// and `summary.json`.
+        #[arg(long)]
+        reference: PathBuf,
+        /// `LABEL=DIR` pairs of the runs to compare (`steps_4=runs/steps_4`).
+        #[arg(required = true)]
+        runs: Vec<String>,
+        /// Output directory.
+        #[arg(short = 'o', long = "out")]
+        out: PathBuf,
+    },
     /// Write the seed-figure tables and plots (`output.profiles`, seed Figs. 7–11) of a run from
     /// its results: of a run made in parts (restarted from checkpoints, each part's
     /// `results.h5` holding its own stages), list the parts in order, and the probe histories
@@ -342,15 +358,24 @@ fn main() -> ExitCode {
                 }
             }
         }
+        Command::Accuracy { reference, runs, out } => {
+            match label_pairs(&runs).and_then(|p| cfrd::accuracy::write_study(&reference, &p, &out)) {
+                Ok(files) => {
+                    for f in files {
+                        println!("{}", f.display());
+                    }
+                    ExitCode::SUCCESS
+                }
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    ExitCode::from(2)
+                }
+            }
+        }
         Command::Overlay { runs, out } => {
-            let pairs: Result<Vec<(String, PathBuf)>, String> = runs
-                .iter()
-                .map(|r| match r.split_once('=') {
-                    Some((l, d)) if !l.is_empty() && !d.is_empty() => Ok((l.to_string(), PathBuf::from(d))),
-                    _ => Err(format!("'{r}': expected LABEL=DIR")),
-                })
-                .collect();
-            match pairs.map(|p| cfrd::profiles::overlay_slab_profiles(&p, &out).map_err(|e| e.to_string())) {
+            match label_pairs(&runs)
+                .map(|p| cfrd::profiles::overlay_slab_profiles(&p, &out).map_err(|e| e.to_string()))
+            {
                 Ok(Ok(n)) => {
                     println!("{n} rows from {} run(s): {}", runs.len(), out.display());
                     ExitCode::SUCCESS
@@ -586,4 +611,14 @@ fn with_mpi(
     }
     drop(universe);
     ExitCode::from(code as u8)
+}
+
+/// `LABEL=DIR` arguments as (label, directory) pairs.
+fn label_pairs(runs: &[String]) -> Result<Vec<(String, PathBuf)>, String> {
+    runs.iter()
+        .map(|r| match r.split_once('=') {
+            Some((l, d)) if !l.is_empty() && !d.is_empty() => Ok((l.to_string(), PathBuf::from(d))),
+            _ => Err(format!("'{r}': expected LABEL=DIR")),
+        })
+        .collect()
 }

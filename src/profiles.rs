@@ -411,16 +411,21 @@ pub fn construction_end(spec: &ProfilesSpec, stages: &[StageFields]) -> Option<u
 
 /// One row of a `fig08_slab_stress.csv` table.
 #[derive(Debug, Clone, PartialEq)]
-struct SlabTableRow {
-    state: String,
-    z: f64,
-    sigma_slope: f64,
-    sigma_axis: f64,
-    deflection: f64,
+pub(crate) struct SlabTableRow {
+    /// "end of construction" or "after impoundment".
+    pub(crate) state: String,
+    /// Elevation (m).
+    pub(crate) z: f64,
+    /// Stress along the slope (Pa, tension +).
+    pub(crate) sigma_slope: f64,
+    /// Stress along the dam axis (Pa, tension +).
+    pub(crate) sigma_axis: f64,
+    /// Deflection (m, towards the dam +).
+    pub(crate) deflection: f64,
 }
 
 /// Reads the `fig08_slab_stress.csv` of a run directory.
-fn read_slab_table(dir: &Path) -> Result<Vec<SlabTableRow>, ProfilesError> {
+pub(crate) fn read_slab_table(dir: &Path) -> Result<Vec<SlabTableRow>, ProfilesError> {
     let path = dir.join("fig08_slab_stress.csv");
     let text = std::fs::read_to_string(&path).map_err(|source| ProfilesError::Io {
         path: path.clone(),

@@ -1,0 +1,76 @@
+#!/usr/bin/env bash
+# Accuracy versus cost on the seed dam (issue 21): runs the coarse hyperbolic seed scene
+# (inputs/scenes/seed_coarse_hyperbolic.yaml, GP rockfill, slab in three stages, impoundment)
+# on 2 ranks with one setting changed at a time from the scene's own:
+#   load steps per stage   1, 2, 4, 8 (the scene's), 16
+#   STOL of the GP rockfill's integration   1e-3, 1e-4 (default), 1e-5, 1e-6
+#   Newton tolerance       1e-4, 1e-5 (the scene's), 1e-6
+#   interface integration  newton_cotes (nodal, default), gauss2x2
+#   mesh                   coarse (with MEDIUM=1 also the medium scene, 10-20 min on 2 cores)
+# and a reference run with every setting at its most accurate (16 load steps, STOL 1e-6, Newton
+# tolerance 1e-6, Gauss interface rule; with MEDIUM=1 the medium mesh). `cfrd accuracy` then
+# gives each run's error in the slab stresses along the slope and the axis and the deflection
+# (seed Figs. 8, 9, central section, after impoundment) and the crest settlement (end of
+# construction) against the reference, with its wall time:
+#   scripts/figures/accuracy_cost.csv   one row per run
+#   scripts/figures/accuracy_cost.png   error against wall time, one panel per quantity
+#
+# Usage: scripts/accuracy_cost.sh [RUN_DIR]
+#   RUN_DIR (default: a new temporary directory) keeps the runs; a run that already finished
+#   there (summary.json) is not repeated. Runs one at a time: the wall times are only
+#   comparable when nothing else runs on the machine.
+set -euo pipefail
+
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$root"
+cargo build --release
+bin="${CARGO_TARGET_DIR:-$root/target}/release/cfrd"
+runs="${1:-$(mktemp -d)}"
+mkdir -p "$runs"
+source ci/env.sh
+export MPIEXEC_TIMEOUT=5400
+
+# variant NAME MESH STEPS STOL NEWTON_TOL RULE: writes the scene RUN_DIR/NAME.yaml
+variant() {
+    local name=$1 mesh=$2 steps=$3 stol=$4 tol=$5 rule=$6
+    sed -e "s/load_steps: [0-9]*/load_steps: $steps/" \
+        -e "s/newton_tol: [0-9.e-]*/newton_tol: $tol/" \
+        -e "s/{ model: rockfill_gp }/{ model: rockfill_gp, integration: { stol: $stol } }/" \
+        -e "s/interface_\*: { material: interface }/interface_*: { material: interface, rule: $rule }/" \
+        -e "s/^name: .*/name: accuracy_$name/" \
+        "inputs/scenes/seed_${mesh}_hyperbolic.yaml" > "$runs/$name.yaml"
+}
+
+# run NAME: runs RUN_DIR/NAME.yaml on 2 ranks into RUN_DIR/NAME unless it finished there
+run() {
+    local out="$runs/$1"
+    [ -f "$out/summary.json" ] && return 0
+    rm -rf "$out"
+    echo "running $1"
+    mpirun -n 2 "$bin" run "$runs/$1.yaml" -o "$out" -q --checkpoint none > "$runs/$1.log" 2>&1 \
+        || echo "$1 failed (exit $?), see $runs/$1.log"
+}
+
+names=()
+add() { variant "$@"; names+=("$1"); }
+add scene coarse 8 1.0e-4 1.0e-5 newton_cotes
+for s in 1 2 4 16; do add "steps_$s" coarse "$s" 1.0e-4 1.0e-5 newton_cotes; done
+for t in 1.0e-3 1.0e-5 1.0e-6; do add "stol_$t" coarse 8 "$t" 1.0e-5 newton_cotes; done
+for t in 1.0e-4 1.0e-6; do add "newton_$t" coarse 8 1.0e-4 "$t" newton_cotes; done
+add gauss coarse 8 1.0e-4 1.0e-5 gauss2x2
+ref_mesh=coarse
+if [ "${MEDIUM:-0}" = 1 ]; then
+    add medium medium 8 1.0e-4 1.0e-5 newton_cotes
+    ref_mesh=medium
+fi
+variant reference "$ref_mesh" 16 1.0e-6 1.0e-6 gauss2x2
+
+run reference
+for n in "${names[@]}"; do run "$n"; done
+
+pairs=()
+for n in "${names[@]}"; do
+    [ -f "$runs/$n/summary.json" ] && pairs+=("$n=$runs/$n")
+done
+mkdir -p scripts/figures
+"$bin" accuracy --reference "$runs/reference" "${pairs[@]}" -o scripts/figures
