@@ -72,7 +72,7 @@
 //! | `boundary` | `{ set, fix: [x, y, z], value }` on node sets (prescribed displacement, zero by default) |
 //! | `loads` | `gravity: { g }`, `pressure: [ { faces, value } ]`, `hydrostatic: [ { faces, level, unit_weight } ]` (γ_w 9810 N/m³ by default) |
 //! | `stages` | construction and loading stages in order: `{ name, activate: [blocks], loads, load_steps }`; placed blocks start strain-free at zero stress. Without stages the scene is one stage (a `mesh.cfrd` scene runs the generator's schedule) |
-//! | `solver` | [`SolverSpec`](crate::scene::schema::SolverSpec): `rtol` (1e-10), `max_iterations` (2000), `newton_tol` (1e-8), `newton_max_iterations` (25), `load_steps` (1), `max_cutbacks` (8), `petsc_options`, `monitor`, `linear_solver` (`iterative` or `canonical_lu`), `reuse_factorization` (true), `integration_tol_ratio` (0, off) |
+//! | `solver` | [`SolverSpec`](crate::scene::schema::SolverSpec): `rtol` (1e-10), `max_iterations` (2000), `newton_tol` (1e-8), `newton_max_iterations` (25), `load_steps` (1), `max_cutbacks` (8), `petsc_options`, `monitor`, `linear_solver` (`iterative`, `canonical_lu` or `distributed_lu`), `reuse_factorization` (true), `integration_tol_ratio` (0, off) |
 //! | `output` | [`OutputSpec`](crate::scene::schema::OutputSpec): `dir` (`out`; `-o` overrides it), `placed_nodes` (`end_of_stage` or `start_of_stage`: where the displacement of a placed node counts from), `profiles` (the seed's Figs. 7–11, [`crate::profiles`]), `checkpoint` (`stage`, `step` or `none`) |
 //!
 //! ### A seed scene
@@ -210,6 +210,13 @@
 //!   counts the factorizations. `-canonical_pc_factor_mat_solver_type mumps` factors with MUMPS
 //!   (faster from the medium mesh up, with the serial OpenBLAS that `ci/install-deps.sh`
 //!   installs).
+//! * `linear_solver: distributed_lu`: MUMPS's LU of the distributed matrix, factored by all
+//!   ranks together, at every Jacobian. Each rank holds only its share of the factors, so a
+//!   mesh whose factors do not fit one rank's memory can use more ranks (or nodes). Results agree
+//!   with the canonical LU's, and between rank counts and runs, to the factorization's rounding,
+//!   not bit for bit: MUMPS's parallel factorization sums in an order that depends on message
+//!   timing. MUMPS's own options take the usual prefix (`-mat_mumps_icntl_14 50` for more
+//!   working memory).
 //!
 //! PETSc options go into `solver.petsc_options`, or follow the command: every single-dash word
 //! with more than one letter is a PETSc option, taking the next word as its value unless that

@@ -513,6 +513,18 @@ fn configure_ksp(ksp: p::KSP, rtol: f64, max_it: u32, symmetric: bool) -> Result
     call!(KSPSetNormType(ksp, p::KSP_NORM_UNPRECONDITIONED))
 }
 
+/// MUMPS's LU on the distributed matrix under `preonly` ([`LinearMethod::DistributedLu`]).
+fn configure_distributed_lu(ksp: p::KSP) -> Result<(), PetscError> {
+    call!(KSPSetType(ksp, p::KSPPREONLY.as_ptr() as *const c_char))?;
+    let mut pc: p::PC = null_mut();
+    call!(KSPGetPC(ksp, &mut pc))?;
+    call!(PCSetType(pc, p::PCLU.as_ptr() as *const c_char))?;
+    call!(PCFactorSetMatSolverType(
+        pc,
+        p::MATSOLVERMUMPS.as_ptr() as *const c_char
+    ))
+}
+
 /// What a nonlinear problem gives PETSc's SNES: the residual F(x), the Jacobian J(x) and the
 /// convergence test. Every method is called collectively (on all ranks, in the same order).
 pub trait SnesProblem {
@@ -557,12 +569,26 @@ pub struct Snes {
     raw: p::SNES,
     comm: mpi::ffi::MPI_Comm,
     settings: (u32, f64, u32, bool),
-    /// The canonical direct solver's settings (`None`: cfrd's Krylov defaults).
-    canonical: Option<CanonicalSettings>,
+    /// The linear solver of the Newton corrections.
+    method: LinearMethod,
     /// The canonical direct solver's state (the PC shell's context); dropped after the SNES.
     canonical_lu: Option<Box<CanonicalLu>>,
     /// Factorizations of canonical solvers already dropped, not yet taken.
     factorizations: u64,
+}
+
+/// The linear solver of the Newton corrections (the scene's `solver.linear_solver`).
+#[derive(Debug, Clone)]
+pub enum LinearMethod {
+    /// cfrd's Krylov defaults (see `configure_ksp`): CG or GMRES with GAMG.
+    Krylov,
+    /// The canonical direct solver ([`CanonicalLu`]): results independent of the rank count.
+    Canonical(CanonicalSettings),
+    /// MUMPS's LU on the distributed matrix, factored by all ranks together (`preonly`; PETSc
+    /// options with the usual prefixes, e.g. `-mat_mumps_icntl_14`, change it): each rank
+    /// holds its share of the factors, so memory and work are split; results agree between
+    /// rank counts, and between runs, to the factorization's rounding only.
+    DistributedLu,
 }
 
 /// Settings of the canonical direct solver ([`CanonicalLu`]).
@@ -576,17 +602,15 @@ pub struct CanonicalSettings {
 }
 
 impl Snes {
-    /// A Newton solver with at most `max_it` iterations and, for the linearized systems,
-    /// either cfrd's Krylov defaults (see `configure_ksp`) or, given the global DOFs in the
-    /// mesh's order and the reuse policy (`canonical`), the canonical direct solver
-    /// ([`CanonicalLu`]); then PETSc options are applied.
+    /// A Newton solver with at most `max_it` iterations and, for the linearized systems, the
+    /// linear solver `method` ([`LinearMethod`]); then PETSc options are applied.
     pub fn new(
         petsc: &Petsc,
         max_it: u32,
         rtol: f64,
         ksp_max_it: u32,
         symmetric: bool,
-        canonical: Option<CanonicalSettings>,
+        method: LinearMethod,
     ) -> Result<Snes, PetscError> {
         let mut raw: p::SNES = null_mut();
         call!(SNESCreate(petsc.comm, &mut raw))?;
@@ -594,7 +618,7 @@ impl Snes {
             raw,
             comm: petsc.comm,
             settings: (max_it, rtol, ksp_max_it, symmetric),
-            canonical,
+            method,
             canonical_lu: None,
             factorizations: 0,
         };
@@ -623,7 +647,7 @@ impl Snes {
 
     /// cfrd's settings on a new SNES.
     fn configure(&mut self) -> Result<(), PetscError> {
-        if let Some(canonical) = &self.canonical {
+        if let LinearMethod::Canonical(canonical) = &self.method {
             self.canonical_lu = Some(CanonicalLu::new(
                 canonical.dofs.clone(),
                 canonical.reuse_factorization,
@@ -646,9 +670,10 @@ impl Snes {
         ))?;
         let mut ksp: p::KSP = null_mut();
         call!(SNESGetKSP(s.raw, &mut ksp))?;
-        match &s.canonical_lu {
-            Some(lu) => lu.install(ksp)?,
-            None => configure_ksp(ksp, rtol, ksp_max_it, symmetric)?,
+        match (&s.canonical_lu, &s.method) {
+            (Some(lu), _) => lu.install(ksp)?,
+            (None, LinearMethod::DistributedLu) => configure_distributed_lu(ksp)?,
+            (None, _) => configure_ksp(ksp, rtol, ksp_max_it, symmetric)?,
         }
         // options (scene and command line) are applied here, so a bad one is an input error
         call!(SNESSetFromOptions(s.raw))

@@ -11,7 +11,7 @@ use super::model::Model;
 use super::newton::{self, StepTarget};
 use super::report::{InterfaceCounts, SolveReport};
 use super::step_control::StepControl;
-use crate::linalg::petsc::{CanonicalSettings, Petsc, Snes};
+use crate::linalg::petsc::{CanonicalSettings, LinearMethod, Petsc, Snes};
 use crate::scene::schema::LinearSolver;
 use crate::scene::Scene;
 use mpi::topology::SimpleCommunicator;
@@ -75,12 +75,13 @@ impl<'a> Problem<'a> {
     /// SNES with the scene's solver settings: CG only when every tangent is symmetric (the
     /// non-associated GP models are not), the canonical LU when the scene asks for it.
     fn nonlinear_solver(petsc: &Petsc, scene: &Scene, model: &Model) -> Result<Snes, SolveError> {
-        let canonical = match scene.file.solver.linear_solver {
-            LinearSolver::Iterative => None,
-            LinearSolver::CanonicalLu => Some(CanonicalSettings {
+        let method = match scene.file.solver.linear_solver {
+            LinearSolver::Iterative => LinearMethod::Krylov,
+            LinearSolver::CanonicalLu => LinearMethod::Canonical(CanonicalSettings {
                 dofs: model.disc.canonical_dofs(),
                 reuse_factorization: scene.file.solver.reuse_factorization,
             }),
+            LinearSolver::DistributedLu => LinearMethod::DistributedLu,
         };
         Ok(Snes::new(
             petsc,
@@ -88,7 +89,7 @@ impl<'a> Problem<'a> {
             scene.file.solver.rtol,
             scene.file.solver.max_iterations,
             model.symmetric_tangent(),
-            canonical,
+            method,
         )?)
     }
 
