@@ -166,6 +166,19 @@
 //!   UMFPACK 44, SuperLU 5, and MUMPS distributed over the two ranks (not canonical) 91 in 100 s.
 //!   Hence the medium and fine scenes' `-canonical_pc_factor_mat_solver_type mumps` and
 //!   `libopenblas0-serial` in `ci/install-deps.sh`.
+//! * **Distributed LU** (`linear_solver: distributed_lu`, MUMPS on the distributed matrix,
+//!   factored by all ranks together; commit a2ebc86). On the small generated dam of
+//!   `tests/cfrd_dam.rs` (elastic fill, hyperbolic interface, 1,005 DOFs) the 2-rank run agrees
+//!   with the canonical LU to 2.4e-11 relative in every field. Two 2-rank runs of the same
+//!   scene differ in the last bits (MUMPS's parallel sums follow message timing), so it is not
+//!   for bitwise comparisons. The same dam shows why the canonical LU is the default of the
+//!   seed scenes: the runs with any other solver fall on two branches after slab stage I. At 1
+//!   and 3 ranks (distributed LU, PETSc's LU, GAMG) the interface tractions of `fill_003` differ
+//!   by up to 5.9e-2 of their largest magnitude from the 2-rank runs (distributed LU, GAMG),
+//!   which agree with the canonical LU to 2e-6; 1 and 3 ranks differ from each other by 7.7e-4.
+//!   The Newton iterations (51) and the open and slipping interface points (99 / 10) are the
+//!   same in all of them: interface points near the loading/unloading switch take the other
+//!   branch on a rounding difference.
 //! * **Refactoring threshold** (fine mesh, commit b907149): refactoring after 30 GMRES iterations
 //!   instead of the default 8 made the first 11 fill stages take 201 s instead of 170 s; after
 //!   4, 186 s.
