@@ -245,10 +245,28 @@ pub struct RunSummary {
     /// before it too (they are carried in the checkpoint), so a run in parts has them all.
     #[serde(default)]
     pub stage_seconds: Vec<StageSeconds>,
+    /// The modal analysis of the run, if a stage asked for one (spec seismic §4 items 4, 9).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub modal: Option<ModalSummary>,
     /// Peak resident memory (bytes), maximum over ranks.
     pub peak_memory_bytes: u64,
     /// Peak resident memory (bytes) of each rank.
     pub peak_memory_bytes_per_rank: Vec<u64>,
+}
+
+/// The natural frequencies of a modal analysis (K₀·φ = ω²·M·φ, spec seismic §4 items 4, 9);
+/// the mode shapes are in `modes.h5`.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ModalSummary {
+    /// The stage at whose start the modes were computed.
+    pub stage: String,
+    /// f = ω/(2π) (Hz), ascending.
+    pub frequencies_hz: Vec<f64>,
+    /// T = 1/f (s), descending.
+    pub periods_s: Vec<f64>,
+    /// Wall-clock seconds of the analysis (assembly of K₀ and M, eigensolve; max over ranks).
+    pub seconds: f64,
 }
 
 impl RunSummary {
