@@ -396,6 +396,12 @@ mod tests {
                 stage: "fill_1".into(),
                 seconds: 1.25,
             }],
+            modal: Some(ModalSummary {
+                stage: "modes".into(),
+                frequencies_hz: vec![1.0, 3.0],
+                periods_s: vec![1.0, 1.0 / 3.0],
+                seconds: 0.5,
+            }),
             peak_memory_bytes: 2048,
             peak_memory_bytes_per_rank: vec![1024, 2048],
         };

@@ -10,7 +10,7 @@
 //! them with a zero mass row and a large stiffness diagonal, gives no spurious eigenvalue to
 //! push away and leaves M positive definite on what remains, so the generalized symmetric
 //! (GHEP) solver of [`crate::linalg::slepc`] applies as is. K₀ is the stiffness at the
-//! committed state, as for Rayleigh damping ([`super::mass`]); M is the consistent (or
+//! committed state, as for Rayleigh damping (spec seismic §3.3); M is the consistent (or
 //! lumped) mass of the placed solids.
 
 use super::error::SolveError;
