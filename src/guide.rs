@@ -194,8 +194,10 @@
 //!
 //! A stage with `modal: { modes: N }` (optionally `mass: lumped`) computes, when it starts
 //! (after placing its blocks, before its first step), the N lowest natural frequencies and mode
-//! shapes of K₀·φ = ω²·M·φ: K₀ the stiffness of that state (as for Rayleigh damping), M the
-//! consistent mass of the placed solids ([`crate::scene::modal`], [`crate::solver::modal`]). A
+//! shapes of K₀·φ = ω²·M·φ: K₀ the small-strain stiffness of that state (the solids' elastic
+//! moduli there, e.g. the GP rockfill's G = G₀·p_a·(p'/p_a)^m_s at its current p'; interfaces at
+//! their current tangent, symmetrized), M the consistent mass of the placed solids
+//! ([`crate::scene::modal`], [`crate::solver::modal`]). A
 //! stage with nothing else to do takes the modes of the state the stages before left, e.g.
 //! after impoundment:
 //!

@@ -498,6 +498,16 @@ impl Matrix {
         Ok(Matrix { raw })
     }
 
+    /// The symmetric part (A + Aᵀ)/2 of this matrix, a new matrix (collective).
+    pub fn symmetric_part(&self) -> Result<Matrix, PetscError> {
+        let mut t: p::Mat = null_mut();
+        call!(MatTranspose(self.raw, p::MAT_INITIAL_MATRIX, &mut t))?;
+        let sym = Matrix { raw: t };
+        call!(MatAXPY(sym.raw, 1.0, self.raw, p::DIFFERENT_NONZERO_PATTERN))?;
+        call!(MatScale(sym.raw, 0.5))?;
+        Ok(sym)
+    }
+
     /// A copy of this matrix, pattern and values.
     pub fn duplicate(&self) -> Result<Matrix, PetscError> {
         let mut raw: p::Mat = null_mut();

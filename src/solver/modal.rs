@@ -9,15 +9,23 @@
 //! and M before SLEPc sees them (`MatCreateSubMatrix`). Removing them, rather than keeping
 //! them with a zero mass row and a large stiffness diagonal, gives no spurious eigenvalue to
 //! push away and leaves M positive definite on what remains, so the generalized symmetric
-//! (GHEP) solver of [`crate::linalg::slepc`] applies as is. K₀ is the stiffness at the
-//! committed state, as for Rayleigh damping (spec seismic §3.3); M is the consistent (or
-//! lumped) mass of the placed solids.
+//! (GHEP) solver of [`crate::linalg::slepc`] applies as is. M is the consistent (or lumped)
+//! mass of the placed solids ([`crate::element::hex8::consistent_mass`]). K₀ is the
+//! small-strain stiffness of the committed state: the solids with their elastic D^e there (for
+//! the GP rockfill G = G₀·p_a·(p'/p_a)^m_s at its current p', spec seismic §4 item 9; its
+//! elasto-plastic tangent is neither symmetric nor what "natural period" means), the
+//! interfaces and joints at their tangent of a zero increment, then symmetrized. For elastic
+//! solids this is the K₀ of Rayleigh damping (spec seismic §3.3); with the GP rockfill the
+//! damping's K₀ is its tangent at the stage's start, which the modes do not use.
 
 use super::error::SolveError;
-use super::model::Model;
+use super::model::{BlockStates, Model};
 use super::problem::Problem;
+use super::solid::Vector24;
+use crate::element::hex8::Hex8Geometry;
+use crate::linalg::petsc::Matrix;
 use crate::linalg::slepc::Eps;
-use crate::parallel::{max_f64, sum_f64, sum_u64};
+use crate::parallel::{any_error, max_f64, sum_f64, sum_u64};
 use crate::scene::modal::ModalRequest;
 
 /// The modes of one state, lowest frequency first.
@@ -49,7 +57,7 @@ impl Problem<'_> {
             )));
         }
         let mass = self.model.assemble_mass(request.lumped)?.submatrix(&free)?;
-        let k0 = self.model.initial_stiffness()?.submatrix(&free)?;
+        let k0 = self.model.modal_stiffness()?.submatrix(&free)?;
         let pairs = Eps::lowest_generalized(&k0, &mass, request.modes as usize, "modal_")?;
         let lo = self.model.disc.dof_lo;
         let n_owned = self.model.disc.n_owned_dofs;
@@ -91,6 +99,69 @@ impl Problem<'_> {
 }
 
 impl Model<'_> {
+    /// The stiffness of the modal analysis at the committed state: ∫ Bᵀ D^e B dV of the solids
+    /// with the elastic D^e of their committed states (the rockfill's G = G₀·p_a·(p'/p_a)^m_s at
+    /// its p', spec seismic §4 item 9), the interfaces and joints at their tangent of a zero
+    /// increment, symmetrized as (K + Kᵀ)/2 for the symmetric eigensolver (the GP interface's
+    /// tangent is not symmetric). Collective; leaves the trial states at the committed ones.
+    fn modal_stiffness(&mut self) -> Result<Matrix, SolveError> {
+        let mut k = self.k.duplicate()?;
+        k.zero()?;
+        let mesh = &self.scene.mesh;
+        let mut values = [0.0f64; 576];
+        let mut local = Ok(());
+        for (i, &e) in self.disc.elements.iter().enumerate() {
+            let (b, be) = self.elem_block[i];
+            if !self.active_block[b] || local.is_err() {
+                continue;
+            }
+            let e = e as usize;
+            let ke = match &mut self.blocks[b] {
+                BlockStates::Solid(block) => Hex8Geometry::new(&mesh.element_coords(e))
+                    .map(|geo| block.elastic_stiffness(be, &geo))
+                    .map_err(|_| SolveError::Geometry {
+                        element: mesh.elements[e].id,
+                    }),
+                BlockStates::Interface(block) => {
+                    let geo = self.iface_geo[i]
+                        .as_ref()
+                        .expect("interface geometry built at set-up");
+                    block
+                        .evaluate(be, geo, &Vector24::zeros(), true)
+                        .map(|r| r.k.expect("a tangent was asked for"))
+                        .map_err(|m| SolveError::Material {
+                            element: mesh.elements[e].id,
+                            reason: m.reason,
+                        })
+                }
+            };
+            let ke = match ke {
+                Ok(ke) => ke,
+                Err(err) => {
+                    local = Err(err);
+                    continue;
+                }
+            };
+            let rows = self.element_dofs(e);
+            let mut owned = Vec::with_capacity(24);
+            for (r, &d) in rows.iter().enumerate() {
+                if self.disc.owns_dof(d) {
+                    for c in 0..24 {
+                        values[24 * owned.len() + c] = ke[(r, c)];
+                    }
+                    owned.push(d);
+                }
+            }
+            if !owned.is_empty() {
+                k.add_values(&owned, &rows, &values[..24 * owned.len()])?;
+            }
+        }
+        k.assemble()?;
+        self.revert()?;
+        any_error(self.comm, local).map_err(SolveError::Collective)?;
+        Ok(k.symmetric_part()?)
+    }
+
     /// The global indices of the owned DOFs that are free: on a placed node and not fixed by
     /// `fixed_mask` (per owned DOF), ascending.
     fn free_dofs(&self, fixed_mask: &[bool]) -> Vec<i32> {
