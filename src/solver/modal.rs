@@ -21,7 +21,7 @@
 use super::error::SolveError;
 use super::model::{BlockStates, Model};
 use super::problem::Problem;
-use super::solid::Vector24;
+use super::solid::{Matrix24, Vector24};
 use crate::element::hex8::Hex8Geometry;
 use crate::linalg::petsc::Matrix;
 use crate::linalg::slepc::Eps;
@@ -107,35 +107,15 @@ impl Model<'_> {
     fn modal_stiffness(&mut self) -> Result<Matrix, SolveError> {
         let mut k = self.k.duplicate()?;
         k.zero()?;
-        let mesh = &self.scene.mesh;
         let mut values = [0.0f64; 576];
         let mut local = Ok(());
-        for (i, &e) in self.disc.elements.iter().enumerate() {
-            let (b, be) = self.elem_block[i];
+        for i in 0..self.disc.elements.len() {
+            let (b, _) = self.elem_block[i];
             if !self.active_block[b] || local.is_err() {
                 continue;
             }
-            let e = e as usize;
-            let ke = match &mut self.blocks[b] {
-                BlockStates::Solid(block) => Hex8Geometry::new(&mesh.element_coords(e))
-                    .map(|geo| block.elastic_stiffness(be, &geo))
-                    .map_err(|_| SolveError::Geometry {
-                        element: mesh.elements[e].id,
-                    }),
-                BlockStates::Interface(block) => {
-                    let geo = self.iface_geo[i]
-                        .as_ref()
-                        .expect("interface geometry built at set-up");
-                    block
-                        .evaluate(be, geo, &Vector24::zeros(), true)
-                        .map(|r| r.k.expect("a tangent was asked for"))
-                        .map_err(|m| SolveError::Material {
-                            element: mesh.elements[e].id,
-                            reason: m.reason,
-                        })
-                }
-            };
-            let ke = match ke {
+            let e = self.disc.elements[i] as usize;
+            let ke = match self.modal_element_stiffness(i) {
                 Ok(ke) => ke,
                 Err(err) => {
                     local = Err(err);
@@ -160,6 +140,32 @@ impl Model<'_> {
         self.revert()?;
         any_error(self.comm, local).map_err(SolveError::Collective)?;
         Ok(k.symmetric_part()?)
+    }
+
+    /// The modal stiffness of the `i`-th evaluated element: elastic for a solid, the tangent of
+    /// a zero increment for an interface or joint ([`Model::modal_stiffness`]).
+    fn modal_element_stiffness(&mut self, i: usize) -> Result<Matrix24, SolveError> {
+        let mesh = &self.scene.mesh;
+        let e = self.disc.elements[i] as usize;
+        let (b, be) = self.elem_block[i];
+        let element = mesh.elements[e].id;
+        match &mut self.blocks[b] {
+            BlockStates::Solid(block) => Hex8Geometry::new(&mesh.element_coords(e))
+                .map(|geo| block.elastic_stiffness(be, &geo))
+                .map_err(|_| SolveError::Geometry { element }),
+            BlockStates::Interface(block) => {
+                let geo = self.iface_geo[i]
+                    .as_ref()
+                    .expect("interface geometry built at set-up");
+                block
+                    .evaluate(be, geo, &Vector24::zeros(), true)
+                    .map(|r| r.k.expect("a tangent was asked for"))
+                    .map_err(|m| SolveError::Material {
+                        element,
+                        reason: m.reason,
+                    })
+            }
+        }
     }
 
     /// The global indices of the owned DOFs that are free: on a placed node and not fixed by
