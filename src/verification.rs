@@ -298,14 +298,14 @@
 //! | same, logarithmic decrement over 7 cycles (item 8) | ζ = 0.04996 | 0.05 |
 //!
 //! The modal stage ([`crate::solver::modal`]), `cargo test --release --test modal --
-//! --nocapture` (commit b541934), on the same column (item 4): the discrete chain of N
+//! --nocapture` (commit d844e64), on the same column (item 4): the discrete chain of N
 //! consistent-mass shear elements has ω_n² = (6G/(ρh²))·(1 − cos θ_n)/(2 + cos θ_n),
 //! θ_n = (2n − 1)π/(2N), which tends to the shear beam's f_n = (2n − 1)·Vs/(4H) from above.
 //!
 //! | column | f₁ / f₂ / f₃ (Hz), 1 and 2 ranks alike | chain's closed form | shear beam |
 //! |---|---|---|---|
-//! | 100 elements (h = 0.5 m) | 1.0000103 / 3.0002776 / 5.0012852 | the same to 4·10⁻¹⁴ | 1 / 3 / 5: +0.001 / +0.009 / +0.026 % |
-//! | 20 elements (h = 2.5 m, the spec's) | 1.0002570 / 3.0069443 / 5.0321865 | the same to 2·10⁻¹⁴ | +0.026 / +0.231 / +0.644 % (f₁ within 0.1 %) |
+//! | 100 elements (h = 0.5 m) | 1.0000103 / 3.0002776 / 5.0012852 | the same to 5·10⁻¹⁴ | 1 / 3 / 5: +0.001 / +0.009 / +0.026 % |
+//! | 20 elements (h = 2.5 m, the spec's) | 1.0002570 / 3.0069443 / 5.0321865 | the same to 4·10⁻¹⁴ | +0.026 / +0.231 / +0.644 % (f₁ within 0.1 %) |
 //! | 40 elements, the lower 20 placed, modes of that stage | 2.000514 / 6.013889 / 10.064373 / 14.176917 | the 25 m chain's, to 10⁻⁸ | – |
 //!
 //! In the last case the held upper nodes, the base and every held y/z component are exactly
@@ -318,7 +318,7 @@
 //! The coarse Mohr–Coulomb seed scene at its post-impoundment state (after the generated
 //! schedule's 14 stages, water at 2840 m): its `earthquake:` replaced by a 0.01 s one whose
 //! Rayleigh damping names modes 1 and 10, so that the modal analysis of the quake's start state
-//! runs (commit b541934; 1120 nodes, 3360 DOFs):
+//! runs (commits b541934 and d844e64, the same to 2.4·10⁻¹⁴; 1120 nodes, 3360 DOFs):
 //!
 //! ```sh
 //! sed -e 's|^earthquake:.*|earthquake: { record: ../accel/seed_quake.csv, duration: 0.01, damping: { ratio: 0.02, modes: [1, 10] } }|' \
