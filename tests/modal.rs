@@ -159,6 +159,12 @@ fn constrained_dofs_and_unplaced_nodes_give_no_mode() {
             i + 1
         );
     }
+    let xdmf = std::fs::read_to_string(dir.path().join("out/modes.xdmf")).expect("modes.xdmf");
+    for k in 1..=4 {
+        let item = format!("modes.h5:/steps/{k:06}/mode_shape");
+        assert!(xdmf.contains(&item), "modes.xdmf lacks {item}:\n{xdmf}");
+    }
+    assert!(!xdmf.contains("/steps/000005/"), "a fifth mode in modes.xdmf");
     for k in 1..=4 {
         let (edge, off_axis) = mode_shape(&dir.path().join("out"), k);
         assert_eq!(edge[0], 0.0, "mode {k}: the fixed base moves");
@@ -170,6 +176,44 @@ fn constrained_dofs_and_unplaced_nodes_give_no_mode() {
         assert!(edge[20] != 0.0, "mode {k}: the placed top is still");
         assert_eq!(off_axis, 0.0, "mode {k}: held components move");
     }
+}
+
+#[test]
+fn the_free_dofs_bound_the_number_of_modes() {
+    // 4 elements: 16 free DOFs (x of the 4 nodes of each level above the base); the shear
+    // chain's 4 modes come first, then the 11 modes of the level's nodes moving apart
+    let dir = tempdir();
+    let place = "  - { name: place, activate: [layer_1] }\n";
+    column_scene(
+        dir.path(),
+        4,
+        1,
+        &format!("{place}  - {{ name: m, modal: {{ modes: 15 }} }}\n"),
+    );
+    let f = modal_frequencies(2, dir.path(), "out15");
+    assert_eq!(f.len(), 15);
+    for (i, &fi) in f.iter().take(4).enumerate() {
+        let chain = chain_frequency(i + 1, 4, H);
+        assert!(
+            (fi / chain - 1.0).abs() < 1e-8,
+            "f{} = {fi} Hz, chain {chain} Hz",
+            i + 1
+        );
+    }
+    assert!(f.windows(2).all(|w| w[0] <= w[1] && w[0] > 0.0), "{f:?}");
+    column_scene(
+        dir.path(),
+        4,
+        1,
+        &format!("{place}  - {{ name: m, modal: {{ modes: 16 }} }}\n"),
+    );
+    let o = cfrd_mpi(2, dir.path(), &["run", "column.yaml", "-o", "out16", "-q"]);
+    assert!(!o.status.success(), "16 modes of 16 free DOFs: {}", text(&o));
+    assert!(
+        text(&o).contains("asks for 16 modes, but the stage has 16 free DOFs: at most 15"),
+        "{}",
+        text(&o)
+    );
 }
 
 #[test]

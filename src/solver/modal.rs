@@ -52,8 +52,9 @@ impl Problem<'_> {
         let n_free = sum_u64(self.comm, free.len() as u64);
         if n_free < u64::from(request.modes) + 1 {
             return Err(SolveError::Collective(format!(
-                "the modal analysis asks for {} modes, the model has {n_free} free DOFs",
-                request.modes
+                "the modal analysis asks for {} modes, but the stage has {n_free} free DOFs: at most {}",
+                request.modes,
+                n_free.saturating_sub(1)
             )));
         }
         let mass = self.model.assemble_mass(request.lumped)?.submatrix(&free)?;
