@@ -217,8 +217,9 @@
 //! the node field `mode_shape`, scaled to a largest component of +1. At most one stage of a
 //! scene runs a modal analysis (its own `modal` key or damping on modes); a bad count or pair of
 //! modes exits with code 2 naming the key. Asking for as many modes as the stage has free DOFs
-//! or more fails the stage (exit 3, naming the largest count possible). A restart inside a dynamic stage with damping on modes recomputes the modes
-//! at the restored state: the same for an elastic model, not for a softened one.
+//! or more fails the stage (exit 3, naming the largest count possible). A restart inside a
+//! dynamic stage with damping on modes recomputes the modes at the restored state: the same for
+//! an elastic model, not for a softened one.
 //!
 //! Displacements of a dynamic stage are relative to the base; its results also hold the
 //! `velocity` (relative) and the absolute `acceleration` (relative plus ground) of every node.
