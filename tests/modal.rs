@@ -301,3 +301,80 @@ fn bad_modal_input_exits_2_naming_the_place() {
         }
     }
 }
+
+/// The stage time of a step checkpoint inside the second stage, `None` before it (or while the
+/// file is being replaced).
+fn time_in_second_stage(ckpt: &Path) -> Option<f64> {
+    let f = hdf5::File::open(ckpt).ok()?;
+    let done: u64 = f
+        .group("checkpoint")
+        .ok()?
+        .attr("stages_done")
+        .ok()?
+        .read_scalar()
+        .ok()?;
+    let path = f.dataset("checkpoint/load_path").ok()?.read_raw::<f64>().ok()?;
+    (done == 1).then(|| path[0])
+}
+
+#[test]
+fn a_quake_damped_on_modes_restarts_bitwise_from_a_step_checkpoint() {
+    // the restart recomputes the modes of the restored state: for the elastic column the same
+    // frequencies, hence the same damping and the same results bit for bit
+    let dir = tempdir();
+    let d = dir.path();
+    let mut csv = String::from("t,a_x,a_y,a_z\n");
+    for i in 0..=100 {
+        let t = i as f64 * 0.01;
+        csv.push_str(&format!("{t},{},0,0\n", 2.0 * (2.0 * PI * 1.3 * t).sin()));
+    }
+    std::fs::write(d.join("record.csv"), csv).expect("record written");
+    let stages = "  - { name: place, activate: [layer_1] }\n  - name: shake\n    dynamic: { record: record.csv, damping: { ratio: 0.05, modes: [1, 3] }, output_every: 50 }\n";
+    column_scene(d, 20, 1, stages);
+    let yaml = std::fs::read_to_string(d.join("column.yaml")).expect("scene");
+    std::fs::write(
+        d.join("column.yaml"),
+        yaml.replace("units: SI", "units: SI\noutput: { checkpoint: step }"),
+    )
+    .expect("scene written");
+    modal_frequencies(2, d, "full");
+    let mut child = common::cfrd_mpi_spawn(2, d, &["run", "column.yaml", "-o", "killed", "-q"]);
+    let ckpt = d.join("killed/checkpoint.h5");
+    let t0 = std::time::Instant::now();
+    while time_in_second_stage(&ckpt).is_none_or(|t| t < 0.3) {
+        assert!(
+            child.try_wait().expect("wait").is_none(),
+            "the run ended before t = 0.3 s"
+        );
+        assert!(t0.elapsed().as_secs() < 240, "no checkpoint past t = 0.3 s");
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    assert!(!common::kill_tree(&mut child).success(), "killed, not finished");
+    let t = time_in_second_stage(&ckpt).expect("a step checkpoint in the shake");
+    eprintln!("killed at t = {t} s");
+    let o = cfrd_mpi(
+        2,
+        d,
+        &[
+            "run",
+            "column.yaml",
+            "-o",
+            "rest",
+            "-q",
+            "--restart",
+            "killed/checkpoint.h5",
+        ],
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    let o = common::cfrd(
+        d,
+        &[
+            "compare",
+            "full/results.h5",
+            "rest/results.h5",
+            "--tolerance",
+            "0",
+        ],
+    );
+    assert!(o.status.success(), "restarted quake differs: {}", text(&o));
+}
