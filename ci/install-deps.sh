@@ -6,7 +6,9 @@ set -euo pipefail
 # alternatives pick it over the reference BLAS). MUMPS, the factorization of
 # `linear_solver: canonical_lu`, spends most of its time in BLAS: on the medium seed dam it
 # made the factorization 5.5 times faster. Serial, so results do not depend on thread timing.
-PKGS=(libpetsc-real-dev libopenmpi-dev openmpi-bin libhdf5-openmpi-dev libmetis-dev libclang-dev pkg-config fonts-dejavu-core libopenblas0-serial)
+# libslepc-real-dev: SLEPc 3.18, built on Debian's PETSc 3.18, for the modal analysis
+# (shift-and-invert eigensolver of the `modal` stage option).
+PKGS=(libpetsc-real-dev libslepc-real-dev libopenmpi-dev openmpi-bin libhdf5-openmpi-dev libmetis-dev libclang-dev pkg-config fonts-dejavu-core libopenblas0-serial)
 missing=()
 for p in "${PKGS[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -1,4 +1,5 @@
-//! Generates the PETSc FFI bindings with bindgen from Debian's PETSc 3.18 (see `spec/stack.md` §3).
+//! Generates the PETSc and SLEPc FFI bindings with bindgen from Debian's PETSc 3.18 and SLEPc 3.18
+//! (see `spec/stack.md` §3; SLEPc serves the modal analysis of spec seismic §4 items 4 and 9).
 //!
 //! Only runs when the `native` feature is on. Refuses to build against a PETSc with 64-bit indices or
 //! non-double scalars, because the safe layer in `src/linalg/petsc.rs` assumes `PetscInt = i32` and
@@ -22,12 +23,23 @@ fn main() {
                  or build without the native stack: cargo build --no-default-features"
             )
         });
+    let slepc = pkg_config::Config::new()
+        .atleast_version("3.18")
+        .probe("SLEPc")
+        .unwrap_or_else(|e| {
+            panic!(
+                "SLEPc >= 3.18 not found by pkg-config ({e}). Install it with\n  \
+                 apt-get install libslepc-real-dev\n\
+                 or build without the native stack: cargo build --no-default-features"
+            )
+        });
     let mpi = pkg_config::Config::new()
         .cargo_metadata(false)
         .probe("ompi-c")
         .expect("OpenMPI's pkg-config file ompi-c not found (apt-get install libopenmpi-dev)");
 
-    let mut includes: Vec<PathBuf> = petsc.include_paths.clone();
+    let mut includes: Vec<PathBuf> = slepc.include_paths.clone();
+    includes.extend(petsc.include_paths.iter().cloned());
     includes.extend(mpi.include_paths.iter().cloned());
 
     check_petscconf(&includes);
@@ -36,7 +48,7 @@ fn main() {
     let header = out.join("petsc_wrapper.h");
     // bindgen makes cargo watch this header: rewriting it (a newer mtime) would rebuild the crate
     // at every cargo command, so it is written only when missing or different
-    let wrapper = "#include <petscsnes.h>\n";
+    let wrapper = "#include <petscsnes.h>\n#include <slepceps.h>\n";
     if std::fs::read_to_string(&header).ok().as_deref() != Some(wrapper) {
         std::fs::write(&header, wrapper).expect("write wrapper header");
     }
@@ -44,8 +56,11 @@ fn main() {
     let mut builder = bindgen::Builder::default()
         .header(header.to_string_lossy())
         .allowlist_function("^(Petsc|Vec|Mat|KSP|PC|SNES|IS|ISLocalToGlobalMapping)[A-Za-z0-9_]*")
+        .allowlist_function("^(Slepc|EPS|ST)[A-Za-z0-9_]*")
         .allowlist_type("^(Petsc|Vec|Mat|KSP|PC|SNES|IS|InsertMode|NormType|ScatterMode)[A-Za-z0-9_]*")
+        .allowlist_type("^(EPS|ST)[A-Za-z0-9_]*")
         .allowlist_var("^(PETSC_|KSP|PC|MAT|VEC|SNES)[A-Za-z0-9_]*")
+        .allowlist_var("^(EPS|ST)[A-Z0-9_]*")
         .blocklist_type("^(MPI_|ompi_).*")
         .raw_line("#[allow(unused_imports)] use mpi::ffi::*;")
         .prepend_enum_name(false)
@@ -57,7 +72,7 @@ fn main() {
     }
     builder
         .generate()
-        .expect("bindgen failed on petscsnes.h")
+        .expect("bindgen failed on petscsnes.h and slepceps.h")
         .write_to_file(out.join("petsc_bindings.rs"))
         .expect("write petsc_bindings.rs");
 }

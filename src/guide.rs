@@ -71,7 +71,7 @@
 //! | `blocks` | every mesh block with its `material`; interface blocks also take `orientation`, `rule` and `initial_normal_stress`. A key with `*` is a pattern (`fill_*_cushion`) for the blocks without an exact key |
 //! | `boundary` | `{ set, fix: [x, y, z], value }` on node sets (prescribed displacement, zero by default) |
 //! | `loads` | `gravity: { g }`, `pressure: [ { faces, value } ]`, `hydrostatic: [ { faces, level, unit_weight } ]` (γ_w 9810 N/m³ by default) |
-//! | `stages` | construction and loading stages in order: `{ name, activate: [blocks], loads, load_steps }`; placed blocks start strain-free at zero stress. Without stages the scene is one stage (a `mesh.cfrd` scene runs the generator's schedule) |
+//! | `stages` | construction and loading stages in order: `{ name, activate: [blocks], loads, load_steps }`, plus `dynamic` ([dynamic stages](#dynamic-stages-and-earthquakes)) and `modal` ([modal analysis](#modal-analysis)); placed blocks start strain-free at zero stress. Without stages the scene is one stage (a `mesh.cfrd` scene runs the generator's schedule) |
 //! | `solver` | [`SolverSpec`](crate::scene::schema::SolverSpec): `rtol` (1e-10), `max_iterations` (2000), `newton_tol` (1e-8), `newton_max_iterations` (25), `load_steps` (1), `max_cutbacks` (8), `petsc_options`, `monitor`, `linear_solver` (`iterative`, `canonical_lu` or `distributed_lu`), `reuse_factorization` (true), `integration_tol_ratio` (0, off) |
 //! | `output` | [`OutputSpec`](crate::scene::schema::OutputSpec): `dir` (`out`; `-o` overrides it), `placed_nodes` (`end_of_stage` or `start_of_stage`: where the displacement of a placed node counts from), `profiles` (the seed's Figs. 7–11, [`crate::profiles`]), `checkpoint` (`stage`, `step` or `none`) |
 //!
@@ -184,6 +184,42 @@
 //!   damping: { ratio: 0.05, frequencies: [1.0, 5.0] }   # C = a_M·M + a_K·K₀ (optional)
 //!   output_every: 10                  # fields every 10 steps (default: the stage's end only)
 //! ```
+//!
+//! Rayleigh damping (spec seismic §3.3, a_M = 2ζω₁ω₂/(ω₁+ω₂), a_K = 2ζ/(ω₁+ω₂)) takes its two
+//! anchors either as `frequencies: [f1, f2]` (Hz) or as `modes: [i, j]` (1-based): then a
+//! modal analysis of the stage's start state runs first and the anchors are its i-th and j-th
+//! frequencies (`damping: { ratio: 0.05, modes: [1, 3] }`).
+//!
+//! ### Modal analysis
+//!
+//! A stage with `modal: { modes: N }` (optionally `mass: lumped`) computes, when it starts
+//! (after placing its blocks, before its first step), the N lowest natural frequencies and mode
+//! shapes of K₀·φ = ω²·M·φ: K₀ the small-strain stiffness of that state (the solids' elastic
+//! moduli there, e.g. the GP rockfill's G = G₀·p_a·(p'/p_a)^m_s at its current p'; interfaces at
+//! their current tangent, symmetrized), M the consistent mass of the placed solids
+//! ([`crate::scene::modal`], [`crate::solver::modal`]). A
+//! stage with nothing else to do takes the modes of the state the stages before left, e.g.
+//! after impoundment:
+//!
+//! ```yaml
+//! stages:
+//!   # ... construction and impoundment stages ...
+//!   - { name: modes, modal: { modes: 6 } }
+//! ```
+//!
+//! Only the free DOFs enter the eigenproblem: the rows and columns of the supports and of the
+//! nodes no placed element touches yet are removed (no spurious mode, M positive definite on the
+//! rest). SLEPc solves it by shift-and-invert about 0 with a MUMPS factorization of K₀
+//! ([`crate::linalg::slepc`]); options with the prefix `modal_` (`-modal_eps_tol 1e-12`,
+//! `-modal_eps_view`) reach it. `summary.json` gets
+//! `"modal": {"stage", "frequencies_hz", "periods_s", "seconds"}`, and `modes.h5` /
+//! `modes.xdmf` hold one step per mode (step time = mode number, label with its frequency) with
+//! the node field `mode_shape`, scaled to a largest component of +1. At most one stage of a
+//! scene runs a modal analysis (its own `modal` key or damping on modes); a bad count or pair of
+//! modes exits with code 2 naming the key. Asking for as many modes as the stage has free DOFs
+//! or more fails the stage (exit 3, naming the largest count possible). A restart inside a
+//! dynamic stage with damping on modes recomputes the modes at the restored state: the same for
+//! an elastic model, not for a softened one.
 //!
 //! Displacements of a dynamic stage are relative to the base; its results also hold the
 //! `velocity` (relative) and the absolute `acceleration` (relative plus ground) of every node.

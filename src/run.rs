@@ -5,7 +5,7 @@
 
 use crate::io::checkpoint::{self, CHECKPOINT_FILE};
 use crate::io::hdf5_out::{strain_output_components, OwnedMesh, ResultsFile, StepInfo};
-use crate::io::summary::{Phase, PhaseTimer, RunSummary, StageSeconds};
+use crate::io::summary::{ModalSummary, Phase, PhaseTimer, RunSummary, StageSeconds};
 use crate::linalg::petsc::Petsc;
 use crate::parallel::{any_error, broadcast_vec, EXIT_INPUT, EXIT_IO, EXIT_SOLVER};
 use crate::scene::schema::CheckpointMode;
@@ -275,6 +275,7 @@ pub fn run_scene(
     let mut failure = None;
     let mut stages_written = 0usize;
     let mut stopped_after = None;
+    let mut modal = None;
     // without a terminal (nohup, a cluster job's log) the bar is not drawn: a line per load step
     let step_lines = rank == 0 && opts.verbose && !std::io::IsTerminal::is_terminal(&std::io::stderr());
     for (k, stage) in scene.stages.iter().enumerate().skip(first_stage) {
@@ -293,6 +294,17 @@ pub fn run_scene(
                 if let Err(m) = any_error(world, begun) {
                     failure = Some(m);
                     break;
+                }
+                if let Some(modes) = problem.modes() {
+                    timer.start(Phase::Output);
+                    modal = Some(write_modes(world, scene, &problem, modes, &out_dir)?);
+                    timer.stop();
+                    let hz: Vec<String> = modes.frequencies_hz.iter().map(|f| format!("{f:.4}")).collect();
+                    say(&format!(
+                        "modal analysis: {} Hz in {:.1} s",
+                        hz.join(", "),
+                        modes.seconds
+                    ));
                 }
                 StepControl::new(stage.t_end(), stage.load_steps)
             }
@@ -462,6 +474,7 @@ pub fn run_scene(
     summary.stopped_after_stage = stopped_after;
     summary.checkpoint_seconds = crate::parallel::max_f64(world, ckpt_seconds);
     summary.stage_seconds = report.stage_seconds.clone();
+    summary.modal = modal;
     summary.gather_peak_memory(world);
     let written = match rank {
         0 => summary.write_json(&out_dir.join("summary.json")),
@@ -535,6 +548,45 @@ fn write_quake(
             Some(f) => format!("{f}; writing the earthquake outputs: {m}"),
             None => format!("writing the earthquake outputs: {m}"),
         },
+    })
+}
+
+/// Writes the mode shapes of `modes` into `modes.h5` / `modes.xdmf` of `out_dir`, one step
+/// per mode (time = mode number, so ParaView steps through them), and returns their summary
+/// ([`crate::scene::modal`]). Collective.
+fn write_modes(
+    world: &SimpleCommunicator,
+    scene: &Scene,
+    problem: &Problem,
+    modes: &crate::solver::Modes,
+    out_dir: &Path,
+) -> Result<ModalSummary, RunFailure> {
+    let written = ResultsFile::create(world, out_dir.join("modes.h5"), &scene.file.name).and_then(|mut f| {
+        let d = problem.discretization();
+        f.write_mesh(&OwnedMesh::from_mesh(
+            &scene.mesh,
+            d.owned_nodes.clone(),
+            d.owned_elements.clone(),
+        ))?;
+        for (i, (freq, shape)) in modes.frequencies_hz.iter().zip(&modes.shapes).enumerate() {
+            f.begin_step(StepInfo {
+                time: (i + 1) as f64,
+                stage: modes.stage.clone(),
+                label: format!("mode {} at {freq:.6} Hz", i + 1),
+            })?;
+            f.write_node_field("mode_shape", "-", 3, shape)?;
+        }
+        f.close()
+    });
+    any_error(world, written).map_err(|m| RunFailure {
+        code: EXIT_IO,
+        message: format!("writing the mode shapes: {m}"),
+    })?;
+    Ok(ModalSummary {
+        stage: modes.stage.clone(),
+        frequencies_hz: modes.frequencies_hz.clone(),
+        periods_s: modes.frequencies_hz.iter().map(|f| 1.0 / f).collect(),
+        seconds: modes.seconds,
     })
 }
 

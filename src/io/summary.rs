@@ -245,10 +245,28 @@ pub struct RunSummary {
     /// before it too (they are carried in the checkpoint), so a run in parts has them all.
     #[serde(default)]
     pub stage_seconds: Vec<StageSeconds>,
+    /// The modal analysis of the run, if a stage asked for one (spec seismic §4 items 4, 9).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub modal: Option<ModalSummary>,
     /// Peak resident memory (bytes), maximum over ranks.
     pub peak_memory_bytes: u64,
     /// Peak resident memory (bytes) of each rank.
     pub peak_memory_bytes_per_rank: Vec<u64>,
+}
+
+/// The natural frequencies of a modal analysis (K₀·φ = ω²·M·φ, spec seismic §4 items 4, 9);
+/// the mode shapes are in `modes.h5`.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ModalSummary {
+    /// The stage at whose start the modes were computed.
+    pub stage: String,
+    /// f = ω/(2π) (Hz), ascending.
+    pub frequencies_hz: Vec<f64>,
+    /// T = 1/f (s), descending.
+    pub periods_s: Vec<f64>,
+    /// Wall-clock seconds of the analysis (assembly of K₀ and M, eigensolve; max over ranks).
+    pub seconds: f64,
 }
 
 impl RunSummary {
@@ -378,6 +396,12 @@ mod tests {
                 stage: "fill_1".into(),
                 seconds: 1.25,
             }],
+            modal: Some(ModalSummary {
+                stage: "modes".into(),
+                frequencies_hz: vec![1.0, 3.0],
+                periods_s: vec![1.0, 1.0 / 3.0],
+                seconds: 0.5,
+            }),
             peak_memory_bytes: 2048,
             peak_memory_bytes_per_rank: vec![1024, 2048],
         };

@@ -3,8 +3,10 @@
 //! Newton iterations through the [`SnesProblem`] callbacks).
 //!
 //! Start-up and shutdown order (`spec/stack.md` §4): MPI first (rsmpi), then [`Petsc::initialize`]
-//! on the same communicator; every PETSc object must be dropped before the [`Petsc`] guard, which
-//! finalizes PETSc but leaves MPI to rsmpi. nalgebra is column-major while `MatSetValues` expects
+//! on the same communicator (through `SlepcInitialize`, which initializes PETSc and SLEPc at
+//! once, so the eigensolvers of [`super::slepc`] need no second start-up); every PETSc object
+//! must be dropped before the [`Petsc`] guard, which finalizes SLEPc and PETSc but leaves MPI to
+//! rsmpi. nalgebra is column-major while `MatSetValues` expects
 //! row-major blocks: [`Matrix::add_values`] takes row-major data and says so.
 #![allow(unsafe_code)]
 
@@ -27,7 +29,8 @@ pub struct PetscError {
     pub message: String,
 }
 
-fn chk(code: p::PetscErrorCode, call: &'static str) -> Result<(), PetscError> {
+/// `Ok` for a zero PETSc error code, else the error with PETSc's text for the code.
+pub(super) fn chk(code: p::PetscErrorCode, call: &'static str) -> Result<(), PetscError> {
     if code == 0 {
         return Ok(());
     }
@@ -55,8 +58,9 @@ pub struct Petsc {
 }
 
 impl Petsc {
-    /// Initializes PETSc on `world` (MPI must already be initialized by rsmpi). Errors are
-    /// returned instead of printed (PETSc's return error handler is pushed).
+    /// Initializes PETSc and SLEPc on `world` (MPI must already be initialized by rsmpi):
+    /// `SlepcInitialize` calls `PetscInitialize` itself. Errors are returned instead of printed
+    /// (PETSc's return error handler is pushed).
     pub fn initialize(world: &SimpleCommunicator) -> Result<Petsc, PetscError> {
         let comm = world.as_raw();
         // SAFETY: PETSC_COMM_WORLD must be set before PetscInitialize (stack.md §4); single-threaded.
@@ -68,7 +72,7 @@ impl Petsc {
         let argv: &'static mut [*mut c_char; 2] = Box::leak(Box::new([prog, null_mut()]));
         let mut argc: i32 = 1;
         let mut argv_ptr: *mut *mut c_char = argv.as_mut_ptr();
-        call!(PetscInitialize(&mut argc, &mut argv_ptr, null(), null()))?;
+        call!(SlepcInitialize(&mut argc, &mut argv_ptr, null(), null()))?;
         call!(PetscPushErrorHandler(
             Some(p::PetscReturnErrorHandler),
             null_mut()
@@ -132,9 +136,10 @@ impl Petsc {
 impl Drop for Petsc {
     fn drop(&mut self) {
         // SAFETY: all PETSc objects are owned by values that borrow nothing from here and must be
-        // dropped before the guard (documented contract).
+        // dropped before the guard (documented contract). SLEPc initialized PETSc, so
+        // SlepcFinalize finalizes PETSc too.
         unsafe {
-            p::PetscFinalize();
+            p::SlepcFinalize();
         }
     }
 }
@@ -161,6 +166,11 @@ impl Vector {
         let mut raw: p::Vec = null_mut();
         call!(VecCreateSeq(mpi::ffi::RSMPI_COMM_SELF, n as i32, &mut raw))?;
         Ok(Vector { raw })
+    }
+
+    /// The raw handle, for the other safe layers of this module's parent (SLEPc).
+    pub(super) fn raw(&self) -> p::Vec {
+        self.raw
     }
 
     /// A new vector with the same layout (values not copied).
@@ -444,6 +454,58 @@ impl Matrix {
     /// `y ← A x`.
     pub fn mult(&self, x: &Vector, y: &mut Vector) -> Result<(), PetscError> {
         call!(MatMult(self.raw, x.raw, y.raw))
+    }
+
+    /// The raw handle, for the other safe layers of this module's parent (SLEPc).
+    pub(super) fn raw(&self) -> p::Mat {
+        self.raw
+    }
+
+    /// A vector laid out like this matrix's columns (values not set).
+    pub fn column_vector(&self) -> Result<Vector, PetscError> {
+        let mut raw: p::Vec = null_mut();
+        call!(MatCreateVecs(self.raw, &mut raw, null_mut()))?;
+        Ok(Vector { raw })
+    }
+
+    /// The square submatrix of the global rows and columns `owned` (this rank's owned indices of
+    /// the new matrix, ascending; collective). Its rows are distributed as `owned` is: the
+    /// i-th owned row of the result is `owned[i]`.
+    pub fn submatrix(&self, owned: &[i32]) -> Result<Matrix, PetscError> {
+        let mut comm: mpi::ffi::MPI_Comm = unsafe { mpi::ffi::RSMPI_COMM_NULL };
+        call!(PetscObjectGetComm(self.raw as p::PetscObject, &mut comm))?;
+        let mut is: p::IS = null_mut();
+        call!(ISCreateGeneral(
+            comm,
+            owned.len() as i32,
+            owned.as_ptr(),
+            p::PETSC_COPY_VALUES,
+            &mut is
+        ))?;
+        let mut raw: p::Mat = null_mut();
+        let r = call!(MatCreateSubMatrix(
+            self.raw,
+            is,
+            is,
+            p::MAT_INITIAL_MATRIX,
+            &mut raw
+        ));
+        // SAFETY: the index set was created above; the submatrix keeps what it needs.
+        unsafe {
+            p::ISDestroy(&mut is);
+        }
+        r?;
+        Ok(Matrix { raw })
+    }
+
+    /// The symmetric part (A + Aᵀ)/2 of this matrix, a new matrix (collective).
+    pub fn symmetric_part(&self) -> Result<Matrix, PetscError> {
+        let mut t: p::Mat = null_mut();
+        call!(MatTranspose(self.raw, p::MAT_INITIAL_MATRIX, &mut t))?;
+        let sym = Matrix { raw: t };
+        call!(MatAXPY(sym.raw, 1.0, self.raw, p::DIFFERENT_NONZERO_PATTERN))?;
+        call!(MatScale(sym.raw, 0.5))?;
+        Ok(sym)
     }
 
     /// A copy of this matrix, pattern and values.

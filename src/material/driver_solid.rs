@@ -462,6 +462,9 @@ mod tests {
         fn stress(state: &Self::State) -> Stress6 {
             state.stress
         }
+        fn elastic_tangent(&self, state: &Self::State) -> crate::tensor::Tangent6 {
+            self.inner.elastic_tangent(state)
+        }
     }
 
     fn elastic() -> LinearElastic {

@@ -89,6 +89,10 @@ pub fn bulk_shear_stiffness(k: f64, g: f64) -> Matrix6 {
 impl SolidModel for LinearElastic {
     type State = ElasticState;
 
+    fn elastic_tangent(&self, _state: &ElasticState) -> Tangent6 {
+        self.d
+    }
+
     fn symmetric_tangent(&self) -> bool {
         true
     }

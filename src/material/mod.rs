@@ -81,6 +81,10 @@ pub trait SolidModel: Send + Sync {
 
     /// The stress held by a state (Pa, tension positive).
     fn stress(state: &Self::State) -> Stress6;
+
+    /// The elastic stiffness D^e (Pa) at a state: the small-strain stiffness of the modal
+    /// analysis (spec seismic §4 item 9, the rockfill's G = G₀·p_a·(p'/p_a)^m_s at its p').
+    fn elastic_tangent(&self, state: &Self::State) -> Tangent6;
 }
 
 /// Displacement-jump (traction–separation) law of an interface or joint point, in the local

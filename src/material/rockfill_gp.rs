@@ -803,6 +803,10 @@ impl RockfillGp {
 impl SolidModel for RockfillGp {
     type State = RockfillGpState;
 
+    fn elastic_tangent(&self, state: &RockfillGpState) -> Tangent6 {
+        RockfillGp::elastic_tangent(self, state)
+    }
+
     fn symmetric_tangent(&self) -> bool {
         false
     }

@@ -10,6 +10,8 @@
 //!       duration: 20.0                      # s, default the record's length
 //!       dt: 0.01                            # s, default the record's sample interval
 //!       damping: { ratio: 0.05, frequencies: [1.0, 5.0] }   # Rayleigh on M and K₀
+//!       # or: damping: { ratio: 0.05, modes: [1, 3] }  anchors at the modal frequencies of
+//!       # modes 1 and 3 of the stage's start state (a modal analysis runs there, see `modal`)
 //!       mass: consistent                    # or lumped
 //!       output_every: 10                    # fields every 10 steps (0: at the end only)
 //! ```
@@ -85,14 +87,39 @@ pub enum MassKind {
     Lumped,
 }
 
-/// Rayleigh damping: the ratio ζ reached at two frequencies.
+/// Rayleigh damping: the ratio ζ reached at two frequencies (spec seismic §3.3), given
+/// directly or as two modes of the stage's start state. Exactly one of `frequencies` and
+/// `modes`.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct RayleighSpec {
     /// Damping ratio ζ at both frequencies (e.g. 0.05).
     pub ratio: f64,
     /// The two anchor frequencies (Hz), f1 < f2.
-    pub frequencies: [f64; 2],
+    #[serde(default)]
+    pub frequencies: Option<[f64; 2]>,
+    /// The two anchor modes (1-based, i < j): their frequencies from a modal analysis of the
+    /// stage's start state ([`crate::scene::modal`]).
+    #[serde(default)]
+    pub modes: Option<[u32; 2]>,
+}
+
+/// Where the two anchor frequencies of Rayleigh damping come from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Anchors {
+    /// Given frequencies (Hz), f1 < f2.
+    Frequencies([f64; 2]),
+    /// Modes i < j (1-based) of the modal analysis at the stage's start.
+    Modes([u32; 2]),
+}
+
+/// Validated Rayleigh damping: ratio ζ and its anchors.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Damping {
+    /// Damping ratio ζ at both anchors.
+    pub ratio: f64,
+    /// The anchor frequencies or modes.
+    pub anchors: Anchors,
 }
 
 impl DynamicStage {
@@ -117,8 +144,8 @@ pub struct DynamicStage {
     pub newmark: NewmarkSpec,
     /// Lumped mass.
     pub lumped: bool,
-    /// Rayleigh damping (ratio, f1, f2).
-    pub damping: Option<RayleighSpec>,
+    /// Rayleigh damping (ratio and anchors).
+    pub damping: Option<Damping>,
     /// Output every this many steps (0: the end only).
     pub output_every: u32,
 }
@@ -158,9 +185,10 @@ pub fn resolve(
         ));
     }
     check_newmark(&spec.newmark).map_err(|m| inv("newmark", m))?;
-    if let Some(d) = &spec.damping {
-        check_damping(d).map_err(|m| inv("damping", m))?;
-    }
+    let damping = match &spec.damping {
+        Some(d) => Some(check_damping(d).map_err(|m| inv("damping", m))?),
+        None => None,
+    };
     Ok(DynamicStage {
         record,
         scale: spec.scale,
@@ -168,7 +196,7 @@ pub fn resolve(
         steps: n as u32,
         newmark: spec.newmark,
         lumped: spec.mass == MassKind::Lumped,
-        damping: spec.damping,
+        damping,
         output_every: spec.output_every,
     })
 }
@@ -192,16 +220,33 @@ fn check_newmark(n: &NewmarkSpec) -> Result<(), String> {
     }
 }
 
-/// 0 ≤ ζ < 1 and 0 < f1 < f2, all finite.
-fn check_damping(d: &RayleighSpec) -> Result<(), String> {
-    let [f1, f2] = d.frequencies;
+/// 0 ≤ ζ < 1 and either 0 < f1 < f2, all finite, or modes 1 ≤ i < j.
+fn check_damping(d: &RayleighSpec) -> Result<Damping, String> {
     if !(d.ratio.is_finite() && (0.0..1.0).contains(&d.ratio)) {
         return Err(format!("ratio {} must be in [0, 1)", d.ratio));
     }
-    if !(f1.is_finite() && f2.is_finite() && f1 > 0.0 && f2 > f1) {
-        return Err(format!(
-            "frequencies [{f1}, {f2}] Hz must be finite with 0 < f1 < f2"
-        ));
-    }
-    Ok(())
+    let anchors = match (d.frequencies, d.modes) {
+        (Some([f1, f2]), None) => {
+            if !(f1.is_finite() && f2.is_finite() && f1 > 0.0 && f2 > f1) {
+                return Err(format!(
+                    "frequencies [{f1}, {f2}] Hz must be finite with 0 < f1 < f2"
+                ));
+            }
+            Anchors::Frequencies([f1, f2])
+        }
+        (None, Some([i, j])) => {
+            if !(i >= 1 && j > i && j <= super::modal::MAX_MODES) {
+                return Err(format!(
+                    "modes [{i}, {j}] must be numbered from 1 with i < j ≤ {}",
+                    super::modal::MAX_MODES
+                ));
+            }
+            Anchors::Modes([i, j])
+        }
+        _ => return Err("give either `frequencies: [f1, f2]` or `modes: [i, j]`, not both".into()),
+    };
+    Ok(Damping {
+        ratio: d.ratio,
+        anchors,
+    })
 }

@@ -7,6 +7,7 @@
 
 pub mod dynamic;
 pub mod error;
+pub mod modal;
 pub mod ranges;
 pub mod restraint;
 pub mod schema;

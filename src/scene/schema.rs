@@ -168,6 +168,10 @@ pub struct StageSpec {
     /// ([`crate::scene::dynamic`]); the stage's loads are applied at once and kept.
     #[serde(default)]
     pub dynamic: Option<super::dynamic::DynamicSpec>,
+    /// A modal analysis of the state this stage starts from, once its blocks are placed
+    /// ([`crate::scene::modal`]).
+    #[serde(default)]
+    pub modal: Option<super::modal::ModalSpec>,
 }
 
 /// Loads of the scene.

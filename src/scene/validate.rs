@@ -2,6 +2,7 @@
 
 use super::dynamic;
 use super::error::SceneError;
+use super::modal;
 use super::schema::{BlockSpec, HydrostaticSpec, LoadsSpec, MeshSource, SceneFile, SolverSpec, StageSpec};
 use super::term::Term;
 use crate::element::interface8::{Interface8Geometry, InterfaceRule};
@@ -212,6 +213,7 @@ impl Scene {
                 terms: resolve_loads(&file.loads, None, &mesh, "loads", &inv)?,
                 load_steps: file.solver.load_steps,
                 dynamic: None,
+                modal: None,
             });
         } else {
             let mut placed = vec![None::<usize>; mesh.blocks.len()];
@@ -245,6 +247,19 @@ impl Scene {
                     Some(d) => d.steps,
                     None => st.load_steps.unwrap_or(file.solver.load_steps),
                 };
+                let stage_path = format!("stages[{k}]");
+                let modal = modal::resolve(st.modal.as_ref(), dynamic.as_ref(), &stage_path, &inv)?;
+                if let (Some(_), Some(first)) = (modal, stages.iter().position(|s: &Stage| s.modal.is_some()))
+                {
+                    return Err(inv(
+                        &stage_path,
+                        format!(
+                            "a modal analysis runs already in stage {} '{}'; a scene runs at most one",
+                            first + 1,
+                            stages[first].name
+                        ),
+                    ));
+                }
                 stages.push(Stage {
                     name: st.name.clone(),
                     activate,
@@ -257,6 +272,7 @@ impl Scene {
                     )?,
                     load_steps,
                     dynamic,
+                    modal,
                 });
             }
         }
@@ -387,6 +403,7 @@ fn append_earthquake(
         loads,
         load_steps: None,
         dynamic: Some(quake),
+        modal: None,
     });
     Ok(())
 }
@@ -414,6 +431,7 @@ fn schedule_stages(schedule: &[CfrdStage], src: &MeshSource) -> Vec<StageSpec> {
             },
             load_steps: st.load_steps,
             dynamic: None,
+            modal: None,
         })
         .collect()
 }
@@ -486,6 +504,8 @@ pub struct Stage {
     pub load_steps: u32,
     /// How a dynamic stage is integrated in time; `None` for a static stage.
     pub dynamic: Option<super::dynamic::DynamicStage>,
+    /// The modal analysis at the stage's start, if any ([`super::modal`]).
+    pub modal: Option<super::modal::ModalRequest>,
 }
 
 impl Stage {

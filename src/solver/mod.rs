@@ -12,6 +12,7 @@
 //! | [`step_control`] | (t, dt) of a stage: targets, cut-back and regrowth |
 //! | [`problem`], `staging`, `results` | the composition: stages, steps, checkpointed state, results |
 //! | [`exact_sum`] | the order-independent sums every Newton decision rests on |
+//! | [`modal`] | natural frequencies and mode shapes of K₀·φ = ω²·M·φ at a stage's start (SLEPc) |
 //!
 //! Checkpoint I/O lives in `crate::io::checkpoint`; the solver does not depend on it.
 
@@ -38,6 +39,8 @@ pub mod loads;
 #[cfg(feature = "native")]
 mod mass;
 #[cfg(feature = "native")]
+pub mod modal;
+#[cfg(feature = "native")]
 pub mod model;
 #[cfg(feature = "native")]
 pub mod newton;
@@ -56,6 +59,8 @@ pub mod step_control;
 
 #[cfg(feature = "native")]
 pub use error::SolveError;
+#[cfg(feature = "native")]
+pub use modal::Modes;
 #[cfg(feature = "native")]
 pub use model::mesh_cells;
 #[cfg(feature = "native")]

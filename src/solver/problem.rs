@@ -39,6 +39,8 @@ pub struct Problem<'a> {
     /// Displacement of the owned DOFs at the start of the stage (for step checkpoints: the
     /// fixed DOFs' start values are recomputed from it on a restart within the stage).
     pub(super) u_stage_start: Vec<f64>,
+    /// The modes of the current stage's start state, when the stage asks for a modal analysis.
+    pub(super) modes: Option<super::modal::Modes>,
 }
 
 impl<'a> Problem<'a> {
@@ -69,6 +71,7 @@ impl<'a> Problem<'a> {
             node_offset: vec![[0.0; 3]; n_owned_nodes],
             node_was_active: vec![false; n_owned_nodes],
             u_stage_start: Vec::new(),
+            modes: None,
         })
     }
 
@@ -91,6 +94,11 @@ impl<'a> Problem<'a> {
             model.symmetric_tangent(),
             method,
         )?)
+    }
+
+    /// The modes of the current stage's start state ([`super::modal`]), if it asked for them.
+    pub fn modes(&self) -> Option<&super::modal::Modes> {
+        self.modes.as_ref()
     }
 
     /// The rank-local indexing.

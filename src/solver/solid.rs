@@ -121,6 +121,17 @@ impl SolidBlock {
         geo.internal_force(&[self.placement_stress(); HEX_GAUSS_POINTS])
     }
 
+    /// The elastic stiffness ∫ Bᵀ D^e B dV of element `e` (block-local index) at its committed
+    /// states (the modal analysis, spec seismic §4 item 9).
+    pub fn elastic_stiffness(&self, e: usize, geo: &Hex8Geometry) -> Matrix24 {
+        with_states!(self, ms => {
+            let tan: [Tangent6; HEX_GAUSS_POINTS] = std::array::from_fn(|q| {
+                ms.model.elastic_tangent(&ms.store.committed[e * HEX_GAUSS_POINTS + q])
+            });
+            geo.stiffness(&tan)
+        })
+    }
+
     /// Whether the model's tangent is symmetric (CG needs it; otherwise GMRES is used).
     pub fn symmetric_tangent(&self) -> bool {
         with_states!(self, ms => ms.model.symmetric_tangent())

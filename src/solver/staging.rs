@@ -8,12 +8,14 @@ use super::problem::Problem;
 use super::solid::Vector24;
 use super::state::{ProblemState, StageProgress};
 use super::step_control::StepControl;
+use crate::scene::dynamic::Anchors;
 use crate::scene::schema::PlacedNodes;
 
 impl Problem<'_> {
     /// Starts stage `k` of the scene: places its blocks (strain-free: their states start from
-    /// the initial state and their strains count from the current displacement) and fixes, at
-    /// their current displacement, the nodes that no placed element touches yet. Collective.
+    /// the initial state and their strains count from the current displacement), fixes, at
+    /// their current displacement, the nodes that no placed element touches yet, and runs the
+    /// stage's modal analysis, if any ([`super::modal`]). Collective.
     pub fn begin_stage(&mut self, k: usize) -> Result<(), SolveError> {
         self.stage = k;
         for (i, &n) in self.model.disc.owned_nodes.iter().enumerate() {
@@ -21,8 +23,13 @@ impl Problem<'_> {
         }
         self.model.place(&self.scene.stages[k].activate)?;
         self.u_stage_start = self.model.u.read(|s| s.to_vec())?;
+        self.fix_for_stage()?;
+        self.modes = match self.scene.stages[k].modal {
+            Some(request) => Some(self.modal_analysis(request)?),
+            None => None,
+        };
         self.integrator = self.integrator_for_stage()?;
-        self.fix_for_stage()
+        Ok(())
     }
 
     /// The time integrator of the current stage: quasi-static, or Newmark at rest at the
@@ -34,9 +41,13 @@ impl Problem<'_> {
             return Ok(Box::new(QuasiStatic));
         };
         let mass = self.model.assemble_mass(d.lumped)?;
-        let damping = d.damping.map_or(Rayleigh::default(), |r| {
-            Rayleigh::from_frequencies(r.ratio, r.frequencies[0], r.frequencies[1])
-        });
+        let damping = match d.damping {
+            Some(r) => {
+                let [f1, f2] = self.anchor_frequencies(r.anchors)?;
+                Rayleigh::from_frequencies(r.ratio, f1, f2)
+            }
+            None => Rayleigh::default(),
+        };
         let k0 = match damping.stiffness != 0.0 {
             true => Some(self.model.initial_stiffness()?),
             false => None,
@@ -51,6 +62,27 @@ impl Problem<'_> {
         Ok(Box::new(newmark))
     }
 
+    /// The two frequencies (Hz) of Rayleigh damping: given, or those of two modes of the
+    /// stage's modal analysis (which the scene's validation makes run for such a stage).
+    fn anchor_frequencies(&self, anchors: Anchors) -> Result<[f64; 2], SolveError> {
+        match anchors {
+            Anchors::Frequencies(f) => Ok(f),
+            Anchors::Modes(m) => {
+                let f = |i: u32| {
+                    self.modes
+                        .as_ref()
+                        .and_then(|modes| modes.frequencies_hz.get(i as usize - 1).copied())
+                };
+                match (f(m[0]), f(m[1])) {
+                    (Some(f1), Some(f2)) if f2 > f1 => Ok([f1, f2]),
+                    _ => Err(SolveError::Collective(format!(
+                        "Rayleigh damping on modes {m:?}: no such pair of distinct modal frequencies"
+                    ))),
+                }
+            }
+        }
+    }
+
     /// Continues the stage in progress of a step checkpoint, once the problem's state is
     /// restored from it (`crate::io::checkpoint::restore` calls this): the fixed DOFs and their
     /// start values from the stored start of the stage, and a fresh preconditioner, as the
@@ -58,11 +90,18 @@ impl Problem<'_> {
     pub fn resume_stage(&mut self, progress: &StageProgress) -> Result<(), SolveError> {
         self.node_was_active.clone_from(&progress.node_was_active);
         self.u_stage_start.clone_from(&progress.u_stage_start);
+        self.fix_for_stage()?;
+        // the modes of the restored state (for damping on modes: the start state's for an
+        // elastic model; a softened model's differ, so such a restart is not bitwise)
+        self.modes = match self.scene.stages[self.stage].modal {
+            Some(request) => Some(self.modal_analysis(request)?),
+            None => None,
+        };
         self.integrator = self.integrator_for_stage()?;
         if let Some(rates) = &progress.rates {
             self.integrator.restore_rates(&self.model.u_committed, rates)?;
         }
-        self.fix_for_stage()
+        Ok(())
     }
 
     /// A fresh preconditioner (after a step checkpoint: the steps that follow do not depend on
