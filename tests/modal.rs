@@ -378,3 +378,65 @@ fn a_quake_damped_on_modes_restarts_bitwise_from_a_step_checkpoint() {
     );
     assert!(o.status.success(), "restarted quake differs: {}", text(&o));
 }
+
+/// The lowest frequency (Hz) of a cantilever of square section `t` × `t` and length `length`,
+/// fixed at x = 0, meshed with `nx` hexahedra along it and `nt` × `nt` across, by the modal
+/// stage on 1 rank; and Euler–Bernoulli's f₁ = (1.8751²/2π)·√(EI/(ρAL⁴)) (spec seismic §4
+/// item 6).
+fn cantilever_f1(dir: &Path, length: f64, t: f64, nx: usize, nt: usize) -> (f64, f64) {
+    let (e, rho) = (25.5e9, 2400.0);
+    let scene = format!(
+        "name: cantilever\nunits: SI\n\
+         mesh:\n  box: {{ size: [{length}, {t}, {t}], divisions: [{nx}, {nt}, {nt}], layers: 1 }}\n\
+         materials:\n  slab: {{ model: elastic, young: {e}, poisson: 0.167, density: {rho} }}\n\
+         blocks:\n  layer_1: {{ material: slab }}\n\
+         boundary:\n  - {{ set: xmin, fix: [x, y, z] }}\n\
+         solver: {{ petsc_options: '-ksp_type preonly -pc_type lu' }}\n\
+         stages:\n  - {{ name: modes, activate: [layer_1], modal: {{ modes: 2 }} }}\n"
+    );
+    std::fs::write(dir.join("column.yaml"), scene).expect("scene written");
+    let f = modal_frequencies(1, dir, &format!("cantilever_{nx}_{nt}"));
+    let inertia = t.powi(4) / 12.0;
+    let exact = 1.8751f64.powi(2) / (2.0 * PI) * (e * inertia / (rho * t * t * length.powi(4))).sqrt();
+    (f[0], exact)
+}
+
+/// The slab's element (spec seismic §4 item 6): a cantilever of 8-node hexahedra with one
+/// element through its thickness. The fully integrated trilinear hexahedron locks in bending
+/// (parasitic shear): the first frequency lies above beam theory by a factor that grows with the
+/// elements' length over the thickness, and only falls towards it as the elements get shorter
+/// than thick. Measured (40 m × 0.5 m × 0.5 m; 10 m for a/t ≤ 1): f₁ / f₁,beam = 6.62 at
+/// a/t = 10, 3.43 at 5, 1.21 at 1, 1.07 at 0.5; two or four elements through the thickness do
+/// not help (1.20 at a/t = 1). The seed scenes' slab elements are tens of times longer than
+/// thick, so their slab is far too stiff in bending (not in its membrane stresses); the remedy
+/// is a slab element with incompatible modes or enhanced strains, not done yet
+/// ([`a_thin_slab_with_one_element_through_its_thickness_bends_as_a_beam`]).
+#[test]
+fn the_trilinear_hexahedron_locks_in_bending_and_converges_as_its_elements_shorten() {
+    let dir = tempdir();
+    let d = dir.path();
+    let ratio = |length: f64, nx: usize| {
+        let (f, exact) = cantilever_f1(d, length, 0.5, nx, 1);
+        f / exact
+    };
+    let ratios = [ratio(40.0, 8), ratio(40.0, 16), ratio(10.0, 20), ratio(10.0, 40)];
+    println!("f1 / f1,beam at a/t = 10, 5, 1, 0.5: {ratios:.3?}");
+    assert!(ratios[0] > 5.0, "a/t = 10 locks: {ratios:?}");
+    assert!(ratios.windows(2).all(|w| w[1] < w[0]), "{ratios:?}");
+    assert!((ratios[3] - 1.0).abs() < 0.08, "a/t = 0.5 within 8 %: {ratios:?}");
+}
+
+/// What the slab needs (spec seismic §4 item 6): with one element through its thickness and
+/// elements 10 times longer than thick, the cantilever's first frequency within 5 % of beam
+/// theory. Ignored: the trilinear hexahedron gives 6.62 times it (see the test above); it
+/// passes once the slab has an element with incompatible modes or enhanced strains.
+#[test]
+#[ignore = "the trilinear hexahedron locks in bending: f1 is 6.62 times beam theory at a/t = 10"]
+fn a_thin_slab_with_one_element_through_its_thickness_bends_as_a_beam() {
+    let dir = tempdir();
+    let (f, exact) = cantilever_f1(dir.path(), 40.0, 0.5, 8, 1);
+    assert!(
+        (f / exact - 1.0).abs() < 0.05,
+        "f1 {f} Hz, beam theory {exact} Hz"
+    );
+}
