@@ -294,7 +294,7 @@ fn main() -> ExitCode {
             }
             Err(e) => {
                 eprintln!("error: {e}");
-                ExitCode::from(2)
+                ExitCode::from(e.exit_code())
             }
         },
         Command::Accel { spec, out } => match cfrd::seismic::run_file(&spec, &out) {

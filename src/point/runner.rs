@@ -24,7 +24,15 @@ use thiserror::Error;
 /// the YAML path of the offending field.
 #[derive(Debug, Error)]
 pub enum PointError {
-    /// The file or an output could not be read/written.
+    /// The test file could not be read.
+    #[error("{path}: {source}")]
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// The I/O error.
+        source: std::io::Error,
+    },
+    /// An output could not be written.
     #[error("{path}: {source}")]
     Io {
         /// The file.
@@ -68,6 +76,18 @@ pub enum PointError {
         /// The plot error.
         source: PlotError,
     },
+}
+
+impl PointError {
+    /// Exit code of `cfrd point` (the guide's table): 2 for bad input, 3 when the material or
+    /// the driver failed, 4 when an output could not be written.
+    pub fn exit_code(&self) -> u8 {
+        match self {
+            PointError::Read { .. } | PointError::Parse { .. } | PointError::Invalid { .. } => 2,
+            PointError::Run { .. } => 3,
+            PointError::Io { .. } | PointError::Plot { .. } => 4,
+        }
+    }
 }
 
 /// What one run of a test produced.
@@ -180,7 +200,7 @@ impl fmt::Display for Summary {
 /// `<stem>.png` into `out_dir` (created if needed).
 pub fn run_file(path: &Path, out_dir: &Path) -> Result<Summary, PointError> {
     let file = path.to_path_buf();
-    let text = std::fs::read_to_string(path).map_err(|source| PointError::Io {
+    let text = std::fs::read_to_string(path).map_err(|source| PointError::Read {
         path: file.clone(),
         source,
     })?;
@@ -1245,6 +1265,13 @@ mod tests {
         }
         let missing = run_file(Path::new("/nonexistent/x.yaml"), Path::new("/tmp")).unwrap_err();
         assert!(missing.to_string().contains("/nonexistent/x.yaml"));
+        assert_eq!(missing.exit_code(), 2);
+        assert_eq!(run_text(&cases_first_invalid()).exit_code(), 2);
+    }
+
+    /// A scene-like invalid value, for the exit code of bad input.
+    fn cases_first_invalid() -> String {
+        "solid: {model: elastic, young: -1.0, poisson: 0.3, density: 2000.0}\ntest: {kind: oedometer, initial_pressure: 1.0e5, path: {kind: monotonic, target: 0.01, steps: 3}}\n".to_string()
     }
 
     /// A run that fails (an update needing more than the allowed substeps) names the run.
@@ -1254,6 +1281,7 @@ mod tests {
             "interface: {model: hyperbolic}\ntest:\n  kind: direct_shear\n  normal_stresses: [1.0e5]\n  path: {kind: monotonic, target: 1000.0, steps: 1}\n",
         );
         assert!(matches!(e, PointError::Run { .. }), "{e}");
+        assert_eq!(e.exit_code(), 3, "a failed computation is a solver failure");
         let msg = e.to_string();
         assert!(
             msg.contains("bad.yaml") && msg.contains("sigma_n = 100 kPa") && msg.contains("substeps"),
