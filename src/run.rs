@@ -511,8 +511,9 @@ fn write_checkpoint(
     Ok(t0.elapsed().as_secs_f64())
 }
 
-/// Writes the crest history and summary of a dynamic stage ([`crate::quake`]) from the closed
-/// results file (rank 0; collective decision). A failure to write them never hides the failure
+/// Writes the crest history and summary of a dynamic stage ([`crate::quake`]) and the seed's
+/// dynamic figures ([`crate::quake_figures`], with the scene's `output.profiles` settings or
+/// their defaults) from the closed results file (rank 0; collective decision). A failure to write them never hides the failure
 /// of a stage (`failure`).
 fn write_quake(
     world: &SimpleCommunicator,
@@ -525,7 +526,14 @@ fn write_quake(
         return Ok(());
     }
     let written = if world.rank() == 0 {
-        crate::quake::write_quake_outputs(scene, h5, out_dir)
+        let spec = scene.file.output.profiles.clone().unwrap_or_default();
+        crate::quake::write_quake_outputs(scene, h5, out_dir).and_then(|mut files| {
+            let parts = [h5.to_path_buf()];
+            files.extend(crate::quake_figures::write_quake_figures(
+                scene, &spec, &parts, out_dir,
+            )?);
+            Ok(files)
+        })
     } else {
         Ok(Vec::new())
     };
