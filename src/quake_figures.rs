@@ -65,7 +65,10 @@ impl QuakeFields {
     fn sampling(&self) -> String {
         let every = match self.output_every {
             0 => "at the stage's end only".to_string(),
-            n => format!("every {n} time step(s) ({} s)", n as f64 * self.dt),
+            n => format!(
+                "every {n} time step(s) ({} s where no step was cut back)",
+                n as f64 * self.dt
+            ),
         };
         format!(
             "# sampled at the results steps of stage '{}': {every}; t = 0 is the state before the quake",

@@ -683,6 +683,10 @@ pub fn write_profiles_from_results(
             });
         }
     }
+    // a part that ran only dynamic stages (restarted into a quake) has no static figures
+    if stages.is_empty() {
+        return Ok(Vec::new());
+    }
     crate::profiles::write_profiles(&scene.mesh, spec, &stages, dir).map_err(|e| e.to_string())
 }
 
