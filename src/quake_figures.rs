@@ -670,13 +670,17 @@ fn locate_probes(
 
 /// Writes the tables and plots of the module docs into `dir` from the closed results files `h5s`
 /// (the parts of a run, [`read_quake_fields`]); returns the files written (none when no quake
-/// is found).
+/// is found or the mesh has no face slab).
 pub fn write_quake_figures(
     scene: &Scene,
     spec: &ProfilesSpec,
     h5s: &[PathBuf],
     dir: &Path,
 ) -> Result<Vec<PathBuf>, String> {
+    // without a face slab (no central section) none of the seed's dam figures applies
+    if section_y(&scene.mesh, spec).is_none() {
+        return Ok(Vec::new());
+    }
     let Some(q) = read_quake_fields(scene, h5s)? else {
         return Ok(Vec::new());
     };
