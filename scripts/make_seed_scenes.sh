@@ -114,14 +114,22 @@ done
 # does not state its damping; generalized plasticity supplies the hysteretic damping and DUT
 # analyses add at most a small viscous part (spec seismic section 3.3): Rayleigh 2 % at 1 and
 # 5 Hz (the dam's first frequencies lie near 1-1.4 Hz, spec seismic section 4 item 9).
+# The probes of the seed's dynamic figures (spec seismic section 3.6): slab element F-A at
+# 2813 m (Fig. 14), interface elements I-B at the left bank at 2809 m, I-C at 2838 m (Figs.
+# 18-19) and I-D at the crest, 2852 m (Fig. 20), besides I-A at 2711 m; the seed places F-A, I-C
+# and I-D at the central section (src/quake_figures.rs).
+quake_probes="[ { name: I-A, elevation: 2711.0 }, { name: I-B, elevation: 2809.0, at: left_bank }, { name: I-C, elevation: 2838.0 }, { name: I-D, elevation: 2852.0 }, { name: F-A, elevation: 2813.0, element: slab } ]"
 for res in coarse medium; do
   for model in gp_interface mohr_coulomb; do
     f=inputs/scenes/seed_${res}_${model}_quake.yaml
     sed -e "s/^name: seed_${res}_${model}$/name: seed_${res}_${model}_quake/" \
         -e "s/^# requirement: the generated schedule runs every fill, slab and impoundment stage (static).$/# requirement: the generated schedule, then a 20 s three-component earthquake (seed section 2.4)./" \
+        -e "s/^# seed Figs. 7-11 as CSV tables and PNG plots; I-A is the seed's interface element at 2711 m$/# seed Figs. 7-11 and, after the quake, Figs. 12-20 as CSV tables and PNG plots (seed probe elements)/" \
+        -e "s/^output: { profiles: { probes: .* } }$/output: { profiles: { probes: ${quake_probes} } }/" \
         "inputs/scenes/seed_${res}_${model}.yaml" > "$f"
     cat >> "$f" <<YAML
 # the seed's quake: 3 / 3 / 2 m/s2 (x stream, y axis, z up), 20 s at 0.01 s; fields every 0.1 s
+# (the probe histories of Figs. 14 and 18-20 are sampled at these steps)
 earthquake: { record: ../accel/seed_quake.csv, damping: { ratio: 0.02, frequencies: [1.0, 5.0] }, output_every: 10 }
 YAML
   done

@@ -73,7 +73,7 @@
 //! | `loads` | `gravity: { g }`, `pressure: [ { faces, value } ]`, `hydrostatic: [ { faces, level, unit_weight } ]` (γ_w 9810 N/m³ by default) |
 //! | `stages` | construction and loading stages in order: `{ name, activate: [blocks], loads, load_steps }`, plus `dynamic` ([dynamic stages](#dynamic-stages-and-earthquakes)) and `modal` ([modal analysis](#modal-analysis)); placed blocks start strain-free at zero stress. Without stages the scene is one stage (a `mesh.cfrd` scene runs the generator's schedule) |
 //! | `solver` | [`SolverSpec`](crate::scene::schema::SolverSpec): `rtol` (1e-10), `max_iterations` (2000), `newton_tol` (1e-8), `newton_max_iterations` (25), `load_steps` (1), `max_cutbacks` (8), `petsc_options`, `monitor`, `linear_solver` (`iterative`, `canonical_lu` or `distributed_lu`), `reuse_factorization` (true), `integration_tol_ratio` (0, off) |
-//! | `output` | [`OutputSpec`](crate::scene::schema::OutputSpec): `dir` (`out`; `-o` overrides it), `placed_nodes` (`end_of_stage` or `start_of_stage`: where the displacement of a placed node counts from), `profiles` (the seed's Figs. 7–11, [`crate::profiles`]), `checkpoint` (`stage`, `step` or `none`) |
+//! | `output` | [`OutputSpec`](crate::scene::schema::OutputSpec): `dir` (`out`; `-o` overrides it), `placed_nodes` (`end_of_stage` or `start_of_stage`: where the displacement of a placed node counts from), `profiles` (the seed's Figs. 7–11, [`crate::profiles`], and after an earthquake Figs. 12–20, [`crate::quake_figures`]; `probes` name the elements followed), `checkpoint` (`stage`, `step` or `none`) |
 //!
 //! ### A seed scene
 //!
@@ -220,6 +220,20 @@
 //! or more fails the stage (exit 3, naming the largest count possible). A restart inside a
 //! dynamic stage with damping on modes recomputes the modes at the restored state: the same for
 //! an elastic model, not for a softened one.
+//! The probes of the seed's dynamic figures are named in `output.profiles.probes`, each the
+//! element nearest to an elevation, in the central section (default) or at a bank
+//! (`at: left_bank` / `right_bank`: the element of that row nearest the abutment, the left bank
+//! at −y), an interface element (default) or a slab element (`element: slab`); the generated
+//! quake scenes name the seed's F-A, I-A…I-D:
+//!
+//! ```yaml
+//! output: { profiles: { probes: [ { name: I-B, elevation: 2809.0, at: left_bank },
+//!                                 { name: F-A, elevation: 2813.0, element: slab } ] } }
+//! ```
+//!
+//! Their histories (Figs. 14, 18–20) are sampled at the results steps, so `output_every`
+//! sets their resolution as well as the size of `results.h5` (the coarse seed dam: about
+//! 0.24 MB per results step, 47 MB for the 20 s quake at `output_every: 10`).
 //!
 //! Displacements of a dynamic stage are relative to the base; its results also hold the
 //! `velocity` (relative) and the absolute `acceleration` (relative plus ground) of every node.
@@ -301,7 +315,7 @@
 //! | `cfrd compare A B [--tolerance T]` | largest absolute and relative difference of every field of every common step of two results files or run directories (steps matched by stage and time, so a restarted run compares with the uninterrupted one); with `--tolerance`, exit code 1 when a relative difference exceeds T |
 //! | `cfrd export RESULTS --field F... [--stage S \| --step N] [--set NAME [--scene SCENE]] [--probe X,Y,Z...] [-o FILE.csv]` | fields of one step of a results file (or run directory) as CSV, without HDF5 tools: the last step by default, or the last step of stage S, or step N; node fields (`displacement`, `reaction`) or element fields (`stress`, `strain`, `interface_*`), one or more of the same kind; every node or element, those of a block (`--set 'slab_*'`, `*` matches any characters), of a node or face set of the scene (`--scene`), or the nearest node or element centre to each probe point (with its distance). Columns: ids, coordinates, then `<field>_<component>_<units>`; interface fields in their local frame [s, a, n]. Values exactly as stored. Standard output without `-o`; exit code 2 names an unknown field, stage, step or set and lists the ones there are (`cfrd::io::export`, feature `native`) |
 //! | `cfrd overlay LABEL=DIR... -o FIG.png` | the slab profiles (seed Figs. 8, 9) of several runs in one figure, e.g. one per interface model |
-//! | `cfrd profiles SCENE RUN... -o DIR` | the seed Figs. 7–11 of a run from its results, over several parts of a run made in parts, in order |
+//! | `cfrd profiles SCENE RUN... -o DIR` | the seed Figs. 7–11 (and 12–20 of a scene with an earthquake) of a run from its results, over several parts of a run made in parts, in order |
 //! | `cfrd point TEST.yaml [-o DIR]` | material-point tests (drained triaxial, cyclic triaxial, oedometer, isotropic compression, interface direct shear under constant normal load or stiffness, model comparisons): CSV tables and a PNG figure; `inputs/point/` has an example of each and its `README.md` the format ([`crate::point`]) |
 //! | `cfrd bench solver [--dofs N] [-o DIR]` | static linear-elastic solve of a seed-like dam section of about N DOFs: one table row (`scripts/bench_solver.sh` runs the set) |
 //! | `cfrd bench materials [--quick]` | integration-point updates per second of every constitutive model, one core ([`crate::material::bench`]) |
@@ -382,6 +396,11 @@
 //! | `summary.json` | run summary: scene, ranks, nodes, elements, DOFs, wall time per phase and per stage (`stage_seconds`), Newton iterations, steps, cut-backs, `newton_per_step`, factorizations, KSP iterations, interface points open and slipping, peak memory per rank, checkpoint time, `restarted_after_stage` / `stopped_after_stage` |
 //! | `checkpoint.h5` | the last checkpoint (staged scenes) |
 //! | `fig07_dam_displacement`, `fig08_slab_stress`, `fig09_slab_deflection`, `fig10_probe_NAME`, `fig11_interface` (`.csv` and `.png`) | the seed's Figs. 7–11 with `output.profiles`: dam displacement on the crest vertical, slab stresses and deflection at the central section at the end of construction and after impoundment, the stress path of each probe interface element, interface jumps and opening ([`crate::profiles`]) |
+//!
+//! | `quake_crest.csv/.png`, `quake_summary.json` | a scene with an earthquake: the crest's displacement since the quake began, absolute and ground acceleration at the results steps; residual crest displacement, peak accelerations and amplification ([`crate::quake`]) |
+//! | `fig12_outline`, `fig13_residual_slab` (`.csv` and `.png`) | a scene with an earthquake (with `output.profiles` or its defaults): the central cross-section before and after the quake, residual displacement magnified by the factor its CSV's first line and the plot state (seed Fig. 12); slab σ_s, σ_a and deflection at the central section before, after and residual = after − before (Fig. 13) ([`crate::quake_figures`]) |
+//! | `fig15_interface_residual.csv`, `fig15_interface_slip.png`, `fig16_interface_normal`, `fig17_interface_opening` | residual interface shear displacement (cushion relative to slab) of every interface element as vectors on the unfolded face (Fig. 15), residual normal displacement excluding opening (Fig. 16) and opening after the quake (Figs. 16–17) along the axis, one line per elevation; the three CSVs hold one row per interface element |
+//! | `fig14_slab_probe_NAME`, `fig18_interface_probe_NAME`, `fig20_opening` (`.csv` and `.png`), `quake_probes.csv` | histories of the probes of `output.profiles.probes`: σ_s, σ_a of a slab probe (`element: slab`, the seed's F-A, Fig. 14); σ_n, τ_s, τ_a, δ_s, δ_a, δ_n and opening of an interface probe (I-B, I-C: Figs. 18–19); the opening of every interface probe (I-D: Fig. 20); where each probe lies. Sampled at the results steps of the quake (every `output_every` time steps) plus t = 0, the state before it; each CSV says so in its first line |
 //!
 //! Fig. 8 of the main job (`fig08_slab_stress.png` of the coarse GP-interface scene, as kept
 //! in `scripts/figures/seed_static_gp_interface_fig08_slab_stress.png`):

@@ -52,6 +52,8 @@ pub mod profiles;
 #[cfg(feature = "native")]
 pub mod quake;
 #[cfg(feature = "native")]
+pub mod quake_figures;
+#[cfg(feature = "native")]
 pub mod run;
 pub mod scene;
 pub mod seismic;

@@ -175,10 +175,11 @@ enum Command {
         #[arg(short = 'o', long = "out")]
         out: PathBuf,
     },
-    /// Write the seed-figure tables and plots (`output.profiles`, seed Figs. 7–11) of a run from
-    /// its results: of a run made in parts (restarted from checkpoints, each part's
-    /// `results.h5` holding its own stages), list the parts in order, and the probe histories
-    /// cover every stage: `cfrd profiles dam.yaml out/part_1 out/part_2 -o out/figures`.
+    /// Write the seed-figure tables and plots (`output.profiles`, seed Figs. 7–11, and Figs.
+    /// 12–20 of a scene with an earthquake) of a run from its results: of a run made in parts
+    /// (restarted from checkpoints, each part's `results.h5` holding its own stages), list the
+    /// parts in order, and the probe histories cover every stage:
+    /// `cfrd profiles dam.yaml out/part_1 out/part_2 -o out/figures`.
     Profiles {
         /// Scene file (YAML) of the run, with `output.profiles`.
         scene: PathBuf,
@@ -528,7 +529,9 @@ fn profiles_of_parts(
     })?;
     let files: Vec<PathBuf> = runs.iter().map(|r| cfrd::io::compare::results_file(r)).collect();
     std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
-    cfrd::run::write_profiles_from_results(&s, spec, &files, out).map(|f| f.len())
+    let statics = cfrd::run::write_profiles_from_results(&s, spec, &files, out)?;
+    let quake = cfrd::quake_figures::write_quake_figures(&s, spec, &files, out)?;
+    Ok(statics.len() + quake.len())
 }
 
 /// `cfrd export`: the table of `req`, into `out` (with a line saying what was written) or to

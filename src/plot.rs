@@ -53,6 +53,8 @@ pub enum SeriesStyle {
     Line,
     /// A small circle at each point.
     Markers,
+    /// Separate straight segments between the points 0–1, 2–3, … (vector plots).
+    Segments,
 }
 
 /// One labelled data series of a panel.
@@ -73,6 +75,15 @@ impl Series {
             label: label.into(),
             points,
             style: SeriesStyle::Line,
+        }
+    }
+
+    /// A series of separate segments (`points` in pairs: tail, head).
+    pub fn segments(label: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
+        Series {
+            label: label.into(),
+            points,
+            style: SeriesStyle::Segments,
         }
     }
 
@@ -325,6 +336,12 @@ fn draw_panel<DB: DrawingBackend>(
             SeriesStyle::Markers => {
                 chart.draw_series(pts.into_iter().map(|p| Circle::new(p, 3, color.filled())))?
             }
+            SeriesStyle::Segments => chart.draw_series(
+                s.points
+                    .chunks_exact(2)
+                    .filter(|ab| ab.iter().all(|(x, y)| x.is_finite() && y.is_finite()))
+                    .map(|ab| PathElement::new(vec![ab[0], ab[1]], color.stroke_width(1))),
+            )?,
         };
         if !s.label.is_empty() {
             any_label = true;

@@ -65,8 +65,9 @@ impl Default for ProfilesSpec {
     }
 }
 
-/// An interface element followed through the stages: the one in the central section whose
-/// centre is nearest to `elevation`.
+/// An element followed through the stages (seed Fig. 10) and through an earthquake (seed
+/// Figs. 14, 18–20; [`crate::quake_figures`]): the element of kind `element` whose centre is
+/// nearest to `elevation`, in the central section or at a bank ([`ProbeAt`]).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Probe {
@@ -74,6 +75,37 @@ pub struct Probe {
     pub name: String,
     /// Elevation z of the element (m, mesh coordinates).
     pub elevation: f64,
+    /// Where along the dam axis (default: the central section).
+    #[serde(default)]
+    pub at: ProbeAt,
+    /// Interface element (default) or face-slab element (the seed's F-A).
+    #[serde(default)]
+    pub element: ProbeElement,
+}
+
+/// Where along the dam axis a probe lies (spec seismic §3.6: F-A, I-A…I-D).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum ProbeAt {
+    /// The central section ([`section_y`]).
+    #[default]
+    Centre,
+    /// The element nearest the left abutment (smallest y, the generated dam's left bank,
+    /// [`crate::mesh::cfrd`]) in the row of elements nearest to the elevation.
+    LeftBank,
+    /// The element nearest the right abutment (largest y) in that row.
+    RightBank,
+}
+
+/// The kind of element a probe follows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum ProbeElement {
+    /// A slab–cushion interface element ([`ProfilesSpec::interface_prefix`]).
+    #[default]
+    Interface,
+    /// A face-slab element ([`ProfilesSpec::slab_prefix`]).
+    Slab,
 }
 
 /// The fields of one stage in global input order (as in the results file).
@@ -141,14 +173,15 @@ pub enum ProfilesError {
 }
 
 /// Elements of the blocks whose names start with `prefix` (input indices).
-fn elements_with_prefix(mesh: &Mesh, prefix: &str) -> Vec<usize> {
+pub fn elements_with_prefix(mesh: &Mesh, prefix: &str) -> Vec<usize> {
     let blocks: Vec<bool> = mesh.blocks.iter().map(|b| b.name.starts_with(prefix)).collect();
     (0..mesh.elements.len())
         .filter(|&e| blocks[mesh.elements[e].block as usize])
         .collect()
 }
 
-fn centre(mesh: &Mesh, e: usize) -> Vector3<f64> {
+/// Centre (mean of the 8 nodes) of element `e`.
+pub fn centre(mesh: &Mesh, e: usize) -> Vector3<f64> {
     mesh.element_coords(e)
         .iter()
         .fold(Vector3::zeros(), |a, x| a + Vector3::from(*x))
@@ -181,15 +214,22 @@ pub fn section_y(mesh: &Mesh, spec: &ProfilesSpec) -> Option<f64> {
 /// Elements of `elements` cut by the plane y = `y`, grouped by elevation (ascending): each
 /// group holds the elements whose centres lie within 1 mm of the same elevation.
 fn section_groups(mesh: &Mesh, elements: &[usize], y: f64) -> Vec<(f64, Vec<usize>)> {
-    let mut cut: Vec<(f64, usize)> = elements
+    let cut: Vec<usize> = elements
         .iter()
-        .filter(|&&e| {
+        .copied()
+        .filter(|&e| {
             let (lo, hi) = y_range(mesh, e);
             let tol = 1e-9 * (hi - lo).abs().max(1.0);
             lo - tol <= y && y <= hi + tol
         })
-        .map(|&e| (centre(mesh, e)[2], e))
         .collect();
+    elevation_groups(mesh, &cut)
+}
+
+/// `elements` grouped by elevation (ascending): each group holds the elements whose centres lie
+/// within 1 mm of the same elevation, in index order.
+pub fn elevation_groups(mesh: &Mesh, elements: &[usize]) -> Vec<(f64, Vec<usize>)> {
+    let mut cut: Vec<(f64, usize)> = elements.iter().map(|&e| (centre(mesh, e)[2], e)).collect();
     cut.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
     let mut groups: Vec<(f64, Vec<usize>)> = Vec::new();
     for (z, e) in cut {
@@ -222,7 +262,8 @@ pub fn slab_frame(x: &[[f64; 3]; 8]) -> LocalFrame {
     LocalFrame::from_normal(&n, &FrameAxes::default())
 }
 
-fn stress_tensor(s: &[f64]) -> Matrix3<f64> {
+/// The symmetric tensor of a Voigt stress `[xx, yy, zz, xy, yz, zx]`.
+pub fn stress_tensor(s: &[f64]) -> Matrix3<f64> {
     Matrix3::new(s[0], s[3], s[5], s[3], s[1], s[4], s[5], s[4], s[2])
 }
 
@@ -296,13 +337,8 @@ pub fn interface_profile(mesh: &Mesh, spec: &ProfilesSpec, f: &StageFields) -> V
         .collect()
 }
 
-/// Settlement and horizontal displacement on the vertical through the crest centre at the
-/// central section (seed Fig. 7): `(z, u_x, u_z)` of the solid nodes nearest to that line at
-/// each elevation, excluding the slab.
-pub fn axis_profile(mesh: &Mesh, spec: &ProfilesSpec, f: &StageFields) -> Vec<(f64, f64, f64)> {
-    let Some(y) = section_y(mesh, spec) else {
-        return Vec::new();
-    };
+/// Nodes of the dam body: of the solid elements outside the slab.
+pub fn body_nodes(mesh: &Mesh, spec: &ProfilesSpec) -> Vec<bool> {
     let slab: Vec<bool> = mesh
         .blocks
         .iter()
@@ -316,6 +352,17 @@ pub fn axis_profile(mesh: &Mesh, spec: &ProfilesSpec, f: &StageFields) -> Vec<(f
             }
         }
     }
+    body
+}
+
+/// Settlement and horizontal displacement on the vertical through the crest centre at the
+/// central section (seed Fig. 7): `(z, u_x, u_z)` of the solid nodes nearest to that line at
+/// each elevation, excluding the slab.
+pub fn axis_profile(mesh: &Mesh, spec: &ProfilesSpec, f: &StageFields) -> Vec<(f64, f64, f64)> {
+    let Some(y) = section_y(mesh, spec) else {
+        return Vec::new();
+    };
+    let body = body_nodes(mesh, spec);
     // the crest centre: the middle of the x-range of the highest body nodes
     let zmax = (0..mesh.num_nodes())
         .filter(|&n| body[n])
@@ -372,15 +419,10 @@ pub fn probe_history(
     probe: &Probe,
     stages: &[StageFields],
 ) -> Option<Vec<ProbeRow>> {
-    let y = section_y(mesh, spec)?;
-    let iface = elements_with_prefix(mesh, &spec.interface_prefix);
-    let groups = section_groups(mesh, &iface, y);
-    let (_, g) = groups.iter().min_by(|a, b| {
-        (a.0 - probe.elevation)
-            .abs()
-            .total_cmp(&(b.0 - probe.elevation).abs())
-    })?;
-    let e = g[0];
+    if probe.element != ProbeElement::Interface {
+        return None;
+    }
+    let e = probe_element(mesh, spec, probe)?;
     Some(
         stages
             .iter()
@@ -400,6 +442,37 @@ pub fn probe_history(
             })
             .collect(),
     )
+}
+
+/// The group of `groups` (elevation, elements) nearest to elevation `z`.
+fn nearest_row(groups: &[(f64, Vec<usize>)], z: f64) -> Option<&[usize]> {
+    groups
+        .iter()
+        .min_by(|a, b| (a.0 - z).abs().total_cmp(&(b.0 - z).abs()))
+        .map(|(_, g)| g.as_slice())
+}
+
+/// The element a probe follows (input index; [`Probe`]): in the central section, the first
+/// element of the elevation group nearest to the probe's elevation; at a bank, the element of
+/// that row (centres within 1 mm of the nearest elevation over the whole face) with the
+/// smallest (left) or largest (right) centre y. `None` without elements of the probe's kind.
+pub fn probe_element(mesh: &Mesh, spec: &ProfilesSpec, probe: &Probe) -> Option<usize> {
+    let prefix = match probe.element {
+        ProbeElement::Interface => &spec.interface_prefix,
+        ProbeElement::Slab => &spec.slab_prefix,
+    };
+    let elements = elements_with_prefix(mesh, prefix);
+    let groups = match probe.at {
+        ProbeAt::Centre => section_groups(mesh, &elements, section_y(mesh, spec)?),
+        ProbeAt::LeftBank | ProbeAt::RightBank => elevation_groups(mesh, &elements),
+    };
+    let row = nearest_row(&groups, probe.elevation)?;
+    let y = |e: &usize| centre(mesh, *e)[1];
+    match probe.at {
+        ProbeAt::Centre => row.first().copied(),
+        ProbeAt::LeftBank => row.iter().copied().min_by(|a, b| y(a).total_cmp(&y(b))),
+        ProbeAt::RightBank => row.iter().copied().max_by(|a, b| y(a).total_cmp(&y(b))),
+    }
 }
 
 /// Index of the end-of-construction stage (module docs).
@@ -738,6 +811,52 @@ mod tests {
         .unwrap();
         let e = overlay_slab_profiles(&runs, &png).unwrap_err().to_string();
         assert!(e.contains("mohr_coulomb") && e.contains("line 2"), "{e}");
+    }
+
+    /// Probes pick the row nearest to their elevation, then the central section or the
+    /// element nearest a bank; a slab probe finds no interface element and vice versa.
+    #[test]
+    fn probes_at_the_centre_and_at_the_banks() {
+        let mut mesh = box_mesh(&BoxSpec {
+            size: [0.2, 40.0, 30.0],
+            divisions: [1, 4, 3],
+            ..Default::default()
+        })
+        .unwrap();
+        mesh.blocks[0].name = "interface_1".into();
+        // no slab to take the section from: the section is given
+        let spec = ProfilesSpec {
+            section_y: Some(20.0),
+            ..Default::default()
+        };
+        let probe = |at: ProbeAt, element: ProbeElement| Probe {
+            name: "P".into(),
+            elevation: 14.0,
+            at,
+            element,
+        };
+        let at = |e: Option<usize>| e.map(|e| [centre(&mesh, e)[1], centre(&mesh, e)[2]]);
+        let centre_probe = probe_element(&mesh, &spec, &probe(ProbeAt::Centre, ProbeElement::Interface));
+        let cut = at(centre_probe).expect("a central element");
+        assert_eq!(cut[1], 15.0, "the row nearest 14 m");
+        assert!(
+            (cut[0] - 20.0).abs() <= 10.0,
+            "cut by the section y = 20 m: {cut:?}"
+        );
+        let left = probe_element(&mesh, &spec, &probe(ProbeAt::LeftBank, ProbeElement::Interface));
+        assert_eq!(at(left), Some([5.0, 15.0]));
+        let right = probe_element(&mesh, &spec, &probe(ProbeAt::RightBank, ProbeElement::Interface));
+        assert_eq!(at(right), Some([35.0, 15.0]));
+        assert_eq!(
+            probe_element(&mesh, &spec, &probe(ProbeAt::Centre, ProbeElement::Slab)),
+            None
+        );
+        let yaml = "{ name: I-B, elevation: 2809.0, at: left_bank }";
+        let parsed: Probe = serde_yaml::from_str(yaml).unwrap();
+        assert_eq!(
+            (parsed.at, parsed.element),
+            (ProbeAt::LeftBank, ProbeElement::Interface)
+        );
     }
 
     #[test]

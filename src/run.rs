@@ -524,8 +524,9 @@ fn write_checkpoint(
     Ok(t0.elapsed().as_secs_f64())
 }
 
-/// Writes the crest history and summary of a dynamic stage ([`crate::quake`]) from the closed
-/// results file (rank 0; collective decision). A failure to write them never hides the failure
+/// Writes the crest history and summary of a dynamic stage ([`crate::quake`]) and the seed's
+/// dynamic figures ([`crate::quake_figures`], with the scene's `output.profiles` settings or
+/// their defaults) from the closed results file (rank 0; collective decision). A failure to write them never hides the failure
 /// of a stage (`failure`).
 fn write_quake(
     world: &SimpleCommunicator,
@@ -538,7 +539,14 @@ fn write_quake(
         return Ok(());
     }
     let written = if world.rank() == 0 {
-        crate::quake::write_quake_outputs(scene, h5, out_dir)
+        let spec = scene.file.output.profiles.clone().unwrap_or_default();
+        crate::quake::write_quake_outputs(scene, h5, out_dir).and_then(|mut files| {
+            let parts = [h5.to_path_buf()];
+            files.extend(crate::quake_figures::write_quake_figures(
+                scene, &spec, &parts, out_dir,
+            )?);
+            Ok(files)
+        })
     } else {
         Ok(Vec::new())
     };
@@ -726,6 +734,10 @@ pub fn write_profiles_from_results(
                 interface_opening: read("interface_opening")?,
             });
         }
+    }
+    // a part that ran only dynamic stages (restarted into a quake) has no static figures
+    if stages.is_empty() {
+        return Ok(Vec::new());
     }
     crate::profiles::write_profiles(&scene.mesh, spec, &stages, dir).map_err(|e| e.to_string())
 }

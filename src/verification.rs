@@ -281,8 +281,9 @@
 //!   10,000 cycles of ±0.2 mm at 200 kPa stop at step 203, the driver holding σ_n to 1e-8
 //!   relative below the interface's integration noise (STOL 1e-4); with `stol: 1.0e-8` all
 //!   40,002 steps run (`hard_cases::ten_thousand_small_cycles_at_a_gp_interface_point`, ignored).
-//! * Dynamics is verified on closed forms (below), not yet on the seed dam's quake (seed
-//!   Figs. 12–20); there is no HHT-α yet.
+//! * Dynamics is verified on closed forms (below); the seed dam's quake (seed Figs. 12–20) is
+//!   compared with the seed for the ideal elasto-plastic interface on the coarse mesh only
+//!   ("The seed quake's figures"); there is no HHT-α yet.
 //!
 //! ## Dynamics
 //!
@@ -373,6 +374,49 @@
 //! PGA 3.000 / 3.000 / 2.000 m/s² and its 5 %-damped spectra within 5.9 / 5.1 / 5.4 % of the
 //! target at every control period (mean 1.45 / 1.28 / 1.36 %); see [`crate::seismic`] for the
 //! figure and the command.
+//!
+//! ## The seed quake's figures (coarse mesh, ideal elasto-plastic interface)
+//!
+//! Commit a1bc98c, 2 ranks, on a machine shared with two other jobs (nice 10):
+//! `mpirun -n 2 cfrd run inputs/scenes/seed_coarse_mohr_coulomb_quake.yaml -o full --monitor`
+//! ran the construction and impoundment and was stopped early in the quake by `mpirun`'s
+//! 600 s limit of `ci/env.sh`; `cfrd run … -o quake --restart full/checkpoint.h5 --monitor`
+//! (no limit) ran the 20 s quake from the post-impoundment checkpoint in 2284 s (2000 steps,
+//! 2.4 Newton iterations per step, 2 cut-backs at t ≈ 0.42 s); `cfrd profiles
+//! inputs/scenes/seed_coarse_mohr_coulomb_quake.yaml full quake -o figs` drew Figs. 7–20 over
+//! the two parts. The figures are `scripts/figures/seed_quake_mohr_coulomb_*.png`; the probe
+//! histories are sampled every 10 steps (`output_every: 10`). Against the seed's findings
+//! (spec seismic §0, §3.7):
+//!
+//! * **Residual slab stresses** at the central section (Fig. 13, residual = after − before):
+//!   along the slope compressive in the lower part (−4.7 to −6.0 MPa below 2750 m, decreasing
+//!   upwards) and slightly tensile in the crest row (+0.5 MPa): the seed's pattern
+//!   (compressive near the bottom, tensile near the crest). Along the axis compressive,
+//!   growing with elevation to **−13.0 MPa** in the crest row (2840 m): the seed's ≈ 13 MPa for
+//!   the ideal elasto-plastic interface. The residual deflection grows from 1.6 cm at the
+//!   bottom row to 18.7 cm at the top (largest near the crest, as in the seed). The GP
+//!   interface's ≈ 9 MPa is not run here.
+//! * **Residual deformation** (Fig. 12, magnified 20 times): crest +0.093 m downstream,
+//!   −0.004 m along the axis, −0.206 m settlement (0.12 % of H); crest amplification 2.9 / 2.1 /
+//!   3.0 (x, y, z; `quake_summary.json`).
+//! * **Interface** (Figs. 15–17): the residual shear displacement is largest in the crest row
+//!   (40 mm near y = 92 m) and below a few mm elsewhere. **The slab does not open from the
+//!   water line up** with this interface on this mesh: after the quake one of 88 interface
+//!   elements is open (1.6 µm, 2723 m), and none of the probes opens during the quake at the
+//!   0.1 s sampling (Fig. 20). The seed's I-D opening after about 2 s is for the GP interface,
+//!   not run here.
+//! * **Probes** (Figs. 14, 18–20, `quake_probes.csv`): the coarse mesh's interface rows are
+//!   about 23 m apart, so I-B (left bank, 2809 m) lies at 2816.8 m, and I-C (2838 m) and I-D
+//!   (2852 m) are the same element of the crest row at 2840.3 m. Initial σ_n: I-B 0.22 MPa
+//!   (seed 0.31 MPa), I-C 0.090 MPa (seed 0.023 MPa). F-A (2816.9 m): σ_a from −3.2 MPa before
+//!   to −12.9 MPa after the quake (at least −15.1 MPa during it); σ_s at most +0.44 MPa
+//!   (t = 2.18 s).
+//!
+//! ![residual slab stresses, coarse seed dam, ideal elasto-plastic interface][quake13]
+//!
+//! ![section outline before and after the quake][quake12]
+#![cfg_attr(doc, doc = embed_doc_image::embed_image!("quake13", "scripts/figures/seed_quake_mohr_coulomb_fig13_residual_slab.png"))]
+#![cfg_attr(doc, doc = embed_doc_image::embed_image!("quake12", "scripts/figures/seed_quake_mohr_coulomb_fig12_outline.png"))]
 #![cfg_attr(doc, doc = embed_doc_image::embed_image!("triaxial", "scripts/figures/rockfill_gp_triaxial.png"))]
 #![cfg_attr(doc, doc = embed_doc_image::embed_image!("crosscheck", "scripts/figures/interface_crosscheck.png"))]
 #![cfg_attr(doc, doc = embed_doc_image::embed_image!("coarse", "scripts/figures/seed_static_slab.png"))]

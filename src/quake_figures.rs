@@ -1,0 +1,754 @@
+//! The seed paper's dynamic outputs (seed Figs. 12–20, spec seismic §3.1 item 3 and §3.6) from
+//! the results of a run with an earthquake stage: the residual deformation (state at the end of
+//! the quake minus the state before it) of the dam section, the slab and the slab–cushion
+//! interface, and the time histories of the named probes ([`crate::profiles::Probe`]). CSV
+//! tables and PNG plots, written by `cfrd run` next to `quake_crest.csv` ([`crate::quake`]).
+//!
+//! | output | seed figure | file |
+//! |---|---|---|
+//! | outline of the central cross-section before and after the quake, residual displacement magnified by the factor in the header | 12 | `fig12_outline.csv/.png` |
+//! | slab σ_s, σ_a and deflection vs elevation at the central section before, after and induced by the residual deformation (after − before) | 13 | `fig13_residual_slab.csv/.png` |
+//! | σ_s, σ_a history of each slab probe (F-A) | 14 | `fig14_slab_probe_NAME.csv/.png` |
+//! | residual interface shear displacement (δ_s, δ_a) of every interface element, vectors on the unfolded face | 15 | `fig15_interface_residual.csv`, `fig15_interface_slip.png` |
+//! | residual normal displacement excluding opening (Δδ_n − Δopening) along the axis per elevation row | 16 | `fig16_interface_normal.csv/.png` |
+//! | slab–cushion opening after the quake along the axis per elevation row | 17 | `fig17_interface_opening.csv/.png` |
+//! | σ_n, τ_s, τ_a and δ_s, δ_a, δ_n, opening history of each interface probe (I-B, I-C) | 18, 19 | `fig18_interface_probe_NAME.csv/.png` |
+//! | opening history of every interface probe (I-D at the crest) | 20 | `fig20_opening.csv/.png` |
+//! | where each probe lies (element id, centre) | – | `quake_probes.csv` |
+//!
+//! The three interface tables `fig15/16/17_*.csv` hold the same rows (one per interface element).
+//!
+//! **Sampling.** The histories are sampled at the results steps of the earthquake stage, i.e.
+//! every `output_every` time steps (`earthquake: { output_every: N }`; every step with
+//! `output_every: 1`), plus t = 0, the state before the quake (the end of the stage before it).
+//! Each history CSV states its sampling in a `#` comment line above the header.
+//!
+//! Conventions are those of [`crate::profiles`] (central section, slab frame, tension +,
+//! interface jump cushion relative to slab, δ_n > 0 opening, σ_n compression +).
+
+use crate::io::compare::{open, stage_name, step_names};
+use crate::mesh::Mesh;
+use crate::plot::{Figure, Panel, Series};
+use crate::profiles::{
+    body_nodes, centre, elements_with_prefix, elevation_groups, probe_element, section_y, slab_frame,
+    slab_profile, stress_tensor, ProbeElement, ProfilesSpec, StageFields,
+};
+use crate::scene::Scene;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// The fields of an earthquake stage as written to the results file.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct QuakeFields {
+    /// Name of the dynamic stage.
+    pub stage: String,
+    /// Time steps between two results steps (the stage's `output_every`, 0: its end only).
+    pub output_every: u32,
+    /// Time step of the stage (s).
+    pub dt: f64,
+    /// The state before the quake (the last results step of the stage before).
+    pub before: StageFields,
+    /// Time in the stage (s) of each results step of the quake.
+    pub t: Vec<f64>,
+    /// The fields of each results step of the quake, in order; the last one is the state after
+    /// the quake when the stage completed.
+    pub steps: Vec<StageFields>,
+}
+
+impl QuakeFields {
+    /// The state after the quake (the last results step).
+    pub fn after(&self) -> &StageFields {
+        self.steps.last().unwrap_or(&self.before)
+    }
+
+    /// The sampling note of the history tables (module docs).
+    fn sampling(&self) -> String {
+        let every = match self.output_every {
+            0 => "at the stage's end only".to_string(),
+            n => format!(
+                "every {n} time step(s) ({} s where no step was cut back)",
+                n as f64 * self.dt
+            ),
+        };
+        format!(
+            "# sampled at the results steps of stage '{}': {every}; t = 0 is the state before the quake",
+            self.stage
+        )
+    }
+
+    /// Times with t = 0 (before the quake) first.
+    fn times(&self) -> impl Iterator<Item = f64> + '_ {
+        std::iter::once(0.0).chain(self.t.iter().copied())
+    }
+
+    /// States with the one before the quake first.
+    fn states(&self) -> impl Iterator<Item = &StageFields> + '_ {
+        std::iter::once(&self.before).chain(self.steps.iter())
+    }
+}
+
+/// Reads one results step's fields (missing fields are empty).
+fn read_fields(g: &hdf5::Group, h5: &Path, stage: String) -> Result<StageFields, String> {
+    let read = |field: &str| -> Result<Vec<f64>, String> {
+        if !g.link_exists(field) {
+            return Ok(Vec::new());
+        }
+        g.dataset(field)
+            .and_then(|d| d.read_raw::<f64>())
+            .map_err(|e| format!("{}: {}/{field}: {e}", h5.display(), g.name()))
+    };
+    Ok(StageFields {
+        name: stage,
+        displacement: read("displacement")?,
+        stress: read("stress")?,
+        interface_traction: read("interface_traction")?,
+        interface_jump: read("interface_jump")?,
+        interface_opening: read("interface_opening")?,
+    })
+}
+
+/// Reads the first earthquake stage of the closed results files `h5s`, the parts of one run in
+/// the order they ran (one file for a run in one go). A step found again in a later part (a run
+/// killed after it and restarted from an earlier checkpoint) replaces the earlier part's steps
+/// from its time on. `None` when the scene has no dynamic stage after another stage, or the
+/// files lack the state before the quake or any step of it.
+pub fn read_quake_fields(scene: &Scene, h5s: &[PathBuf]) -> Result<Option<QuakeFields>, String> {
+    let Some(k) = scene.stages.iter().position(|s| s.dynamic.is_some()) else {
+        return Ok(None);
+    };
+    let Some(previous) = k.checked_sub(1).map(|p| scene.stages[p].name.as_str()) else {
+        return Ok(None);
+    };
+    let stage = &scene.stages[k];
+    let dynamic = stage.dynamic.as_ref().expect("a dynamic stage");
+    let dt = dynamic.duration / dynamic.steps.max(1) as f64;
+    let mut before = None;
+    let mut q = QuakeFields {
+        stage: stage.name.clone(),
+        output_every: dynamic.output_every,
+        dt,
+        ..Default::default()
+    };
+    for h5 in h5s {
+        let file = open(h5)?;
+        for name in step_names(&file, h5)? {
+            let g = file.group(&format!("/steps/{name}")).map_err(|e| e.to_string())?;
+            let this = stage_name(&g).unwrap_or_default();
+            if this == previous {
+                before = Some(read_fields(&g, h5, this)?);
+            } else if this == stage.name {
+                let time: f64 = g
+                    .attr("time")
+                    .and_then(|a| a.read_scalar())
+                    .map_err(|e| e.to_string())?;
+                let t = on_time_grid((time - k as f64) * dynamic.duration, dt);
+                while q.t.last().is_some_and(|&last| last >= t) {
+                    q.t.pop();
+                    q.steps.pop();
+                }
+                q.t.push(t);
+                q.steps.push(read_fields(&g, h5, this)?);
+            }
+        }
+    }
+    let Some(before) = before else {
+        return Ok(None);
+    };
+    q.before = before;
+    Ok((!q.steps.is_empty()).then_some(q))
+}
+
+/// `t` snapped to the nearest multiple of `dt` when within 1e-6·dt of it (a step's time is
+/// stored as a fraction of the stage).
+fn on_time_grid(t: f64, dt: f64) -> f64 {
+    let n = (t / dt).round();
+    if (t - n * dt).abs() <= 1e-6 * dt {
+        n * dt
+    } else {
+        t
+    }
+}
+
+/// `after − before` of every field (the residual state, spec seismic §3.1 item 3); a field
+/// missing from either is empty.
+pub fn residual(before: &StageFields, after: &StageFields) -> StageFields {
+    let diff = |a: &[f64], b: &[f64]| -> Vec<f64> {
+        if a.len() != b.len() {
+            return Vec::new();
+        }
+        a.iter().zip(b).map(|(x, y)| x - y).collect()
+    };
+    StageFields {
+        name: format!("{} - {}", after.name, before.name),
+        displacement: diff(&after.displacement, &before.displacement),
+        stress: diff(&after.stress, &before.stress),
+        interface_traction: diff(&after.interface_traction, &before.interface_traction),
+        interface_jump: diff(&after.interface_jump, &before.interface_jump),
+        interface_opening: diff(&after.interface_opening, &before.interface_opening),
+    }
+}
+
+/// A round magnification (1, 2 or 5 × 10ᵏ, at least 1) that draws a largest displacement of
+/// `umax` as about 5 % of `size`.
+pub fn magnification(size: f64, umax: f64) -> f64 {
+    if umax <= 0.0 || !umax.is_finite() {
+        return 1.0;
+    }
+    let raw = 0.05 * size / umax;
+    let decade = 10f64.powf(raw.log10().floor());
+    let mantissa = [5.0, 2.0, 1.0]
+        .into_iter()
+        .find(|m| m * decade <= raw)
+        .unwrap_or(1.0);
+    (mantissa * decade).max(1.0)
+}
+
+/// The outline of the dam body's cross-section in the node plane nearest to the central
+/// section: per elevation (node rows within 1 mm), the most upstream nodes from the base up,
+/// then the most downstream nodes from the crest down, closed. Node indices.
+pub fn section_outline(mesh: &Mesh, spec: &ProfilesSpec) -> Vec<usize> {
+    let Some(y) = section_y(mesh, spec) else {
+        return Vec::new();
+    };
+    let body = body_nodes(mesh, spec);
+    let nodes: Vec<usize> = (0..mesh.num_nodes()).filter(|&n| body[n]).collect();
+    let Some(plane) = nodes
+        .iter()
+        .map(|&n| mesh.coords[n][1])
+        .min_by(|a, b| (a - y).abs().total_cmp(&(b - y).abs()))
+    else {
+        return Vec::new();
+    };
+    let tol = 1e-6 * plane.abs().max(1.0);
+    let mut rows: std::collections::BTreeMap<i64, (usize, usize)> = Default::default();
+    for &n in nodes.iter().filter(|&&n| (mesh.coords[n][1] - plane).abs() < tol) {
+        let x = |m: usize| mesh.coords[m][0];
+        let key = (mesh.coords[n][2] * 1000.0).round() as i64;
+        let row = rows.entry(key).or_insert((n, n));
+        if x(n) < x(row.0) {
+            row.0 = n;
+        }
+        if x(n) > x(row.1) {
+            row.1 = n;
+        }
+    }
+    let mut outline: Vec<usize> = rows.values().map(|r| r.0).collect();
+    outline.extend(rows.values().rev().map(|r| r.1));
+    if let Some(&first) = outline.first() {
+        outline.push(first);
+    }
+    outline
+}
+
+/// Writes `text` as `dir/name` and records the path.
+fn csv_out(dir: &Path, files: &mut Vec<PathBuf>, name: &str, text: String) -> Result<(), String> {
+    let path = dir.join(name);
+    std::fs::write(&path, text).map_err(|e| format!("{}: {e}", path.display()))?;
+    files.push(path);
+    Ok(())
+}
+
+/// Saves `figure` as `dir/name` and records the path.
+fn png_out(dir: &Path, files: &mut Vec<PathBuf>, name: &str, figure: Figure) -> Result<(), String> {
+    let path = dir.join(name);
+    figure.save_png(&path).map_err(|e| e.to_string())?;
+    files.push(path);
+    Ok(())
+}
+
+/// A probe name made safe for a file name.
+fn safe_name(name: &str) -> String {
+    name.chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect()
+}
+
+/// Fig. 12: the section outline before and after the quake.
+fn fig12(
+    mesh: &Mesh,
+    spec: &ProfilesSpec,
+    q: &QuakeFields,
+    dir: &Path,
+    files: &mut Vec<PathBuf>,
+) -> Result<(), String> {
+    let outline = section_outline(mesh, spec);
+    let res = residual(&q.before, q.after());
+    let du = |n: usize| [res.displacement[3 * n], res.displacement[3 * n + 2]];
+    let zs = outline.iter().map(|&n| mesh.coords[n][2]);
+    let height = zs.clone().fold(f64::NEG_INFINITY, f64::max) - zs.fold(f64::INFINITY, f64::min);
+    let umax = outline
+        .iter()
+        .map(|&n| du(n)[0].hypot(du(n)[1]))
+        .fold(0.0, f64::max);
+    let f = magnification(height, umax);
+    let mut csv = format!(
+        "# central section; before = the mesh coordinates of the section (the static displacement \
+         is not drawn), after = before + {f} x the residual displacement (after - before the quake)\n\
+         node_id,x_m,z_m,ux_residual_m,uz_residual_m,x_after_m,z_after_m\n"
+    );
+    let (mut before, mut after) = (Vec::new(), Vec::new());
+    for &n in &outline {
+        let [x, z] = [mesh.coords[n][0], mesh.coords[n][2]];
+        let [ux, uz] = du(n);
+        let _ = writeln!(
+            csv,
+            "{},{x},{z},{ux},{uz},{},{}",
+            mesh.node_ids[n],
+            x + f * ux,
+            z + f * uz
+        );
+        before.push((x, z));
+        after.push((x + f * ux, z + f * uz));
+    }
+    csv_out(dir, files, "fig12_outline.csv", csv)?;
+    let panel = Panel::new(
+        format!("Central cross-section, residual displacement x {f}"),
+        "x (m, downstream)",
+        "z (m)",
+    )
+    .with(Series::line("before the quake", before))
+    .with(Series::line("after the quake", after));
+    let fig = Figure::new("Dam outline before and after the earthquake (seed Fig. 12)")
+        .with(panel)
+        .columns(1);
+    png_out(dir, files, "fig12_outline.png", fig)
+}
+
+/// Fig. 13: slab profiles before, after and induced by the residual deformation.
+fn fig13(
+    mesh: &Mesh,
+    spec: &ProfilesSpec,
+    q: &QuakeFields,
+    dir: &Path,
+    files: &mut Vec<PathBuf>,
+) -> Result<(), String> {
+    let res = residual(&q.before, q.after());
+    let states = [
+        ("before the quake", &q.before),
+        ("after the quake", q.after()),
+        ("residual", &res),
+    ];
+    let mut csv = String::from("state,z_m,sigma_slope_Pa,sigma_axis_Pa,deflection_m\n");
+    let titles = [
+        ("Slab stress along the slope (tension +)", "sigma_s (MPa)"),
+        ("Slab stress along the dam axis (tension +)", "sigma_a (MPa)"),
+        ("Slab deflection (towards the dam +)", "deflection (cm)"),
+    ];
+    let mut panels: Vec<Panel> = titles.iter().map(|(t, x)| Panel::new(*t, *x, "z (m)")).collect();
+    for (label, fields) in states {
+        let prof = slab_profile(mesh, spec, fields);
+        for r in &prof {
+            let _ = writeln!(
+                csv,
+                "{label},{},{},{},{}",
+                r.z, r.sigma_slope, r.sigma_axis, r.deflection
+            );
+        }
+        let values: [Vec<(f64, f64)>; 3] = [
+            prof.iter().map(|r| (r.sigma_slope / 1e6, r.z)).collect(),
+            prof.iter().map(|r| (r.sigma_axis / 1e6, r.z)).collect(),
+            prof.iter().map(|r| (r.deflection * 100.0, r.z)).collect(),
+        ];
+        for (panel, points) in panels.iter_mut().zip(values) {
+            panel.push(Series::line(label, points));
+        }
+    }
+    csv_out(dir, files, "fig13_residual_slab.csv", csv)?;
+    let mut fig =
+        Figure::new("Slab at the central section: residual = after - before the quake (seed Fig. 13)");
+    for p in panels {
+        fig.push(p);
+    }
+    png_out(dir, files, "fig13_residual_slab.png", fig.columns(3))
+}
+
+/// Fig. 14: stress history of a slab probe element `e`.
+fn fig14(
+    mesh: &Mesh,
+    name: &str,
+    e: usize,
+    q: &QuakeFields,
+    dir: &Path,
+    files: &mut Vec<PathBuf>,
+) -> Result<(), String> {
+    let frame = slab_frame(&mesh.element_coords(e));
+    let mut csv = format!("{}\nt_s,sigma_slope_Pa,sigma_axis_Pa\n", q.sampling());
+    let (mut s, mut a) = (Vec::new(), Vec::new());
+    for (t, f) in q.times().zip(q.states()) {
+        let sig = stress_tensor(&f.stress[6 * e..6 * e + 6]);
+        let (ss, sa) = (frame.s.dot(&(sig * frame.s)), frame.a.dot(&(sig * frame.a)));
+        let _ = writeln!(csv, "{t},{ss},{sa}");
+        s.push((t, ss / 1e6));
+        a.push((t, sa / 1e6));
+    }
+    let safe = safe_name(name);
+    csv_out(dir, files, &format!("fig14_slab_probe_{safe}.csv"), csv)?;
+    let z = centre(mesh, e)[2];
+    let fig = Figure::new(format!("Slab element {name} at z = {z:.0} m (seed Fig. 14)"))
+        .with(
+            Panel::new("Stress along the slope (tension +)", "t (s)", "sigma_s (MPa)")
+                .with(Series::line("", s)),
+        )
+        .with(
+            Panel::new("Stress along the dam axis (tension +)", "t (s)", "sigma_a (MPa)")
+                .with(Series::line("", a)),
+        )
+        .columns(1);
+    png_out(dir, files, &format!("fig14_slab_probe_{safe}.png"), fig)
+}
+
+/// One interface element's state: σ_n (compression +), τ_s, τ_a, δ_s, δ_a, δ_n, opening.
+fn interface_state(f: &StageFields, e: usize) -> [f64; 7] {
+    let t = &f.interface_traction[3 * e..3 * e + 3];
+    let d = &f.interface_jump[3 * e..3 * e + 3];
+    // + 0.0 turns the −0 of an unloaded element into 0
+    [-t[2] + 0.0, t[0], t[1], d[0], d[1], d[2], f.interface_opening[e]]
+}
+
+/// Figs. 18–19: stress and displacement history of an interface probe element `e`.
+fn fig18(
+    mesh: &Mesh,
+    name: &str,
+    e: usize,
+    q: &QuakeFields,
+    dir: &Path,
+    files: &mut Vec<PathBuf>,
+) -> Result<(), String> {
+    let mut csv = format!(
+        "{}\nt_s,sigma_n_Pa,tau_s_Pa,tau_a_Pa,delta_s_m,delta_a_m,delta_n_m,opening_m\n",
+        q.sampling()
+    );
+    let mut cols: [Vec<(f64, f64)>; 7] = Default::default();
+    for (t, f) in q.times().zip(q.states()) {
+        let v = interface_state(f, e);
+        let row: Vec<String> = v.iter().map(|x| x.to_string()).collect();
+        let _ = writeln!(csv, "{t},{}", row.join(","));
+        let scale = [1e-3, 1e-3, 1e-3, 1e3, 1e3, 1e3, 1e3];
+        for (c, col) in cols.iter_mut().enumerate() {
+            col.push((t, v[c] * scale[c]));
+        }
+    }
+    let safe = safe_name(name);
+    csv_out(dir, files, &format!("fig18_interface_probe_{safe}.csv"), csv)?;
+    let [sn, ts, ta, ds, da, dn, op] = cols;
+    let z = centre(mesh, e)[2];
+    let fig = Figure::new(format!(
+        "Interface element {name} at z = {z:.0} m (seed Figs. 18-20)"
+    ))
+    .with(
+        Panel::new("Stresses", "t (s)", "kPa")
+            .with(Series::line("sigma_n (compression +)", sn))
+            .with(Series::line("tau_s (slope)", ts))
+            .with(Series::line("tau_a (axis)", ta)),
+    )
+    .with(
+        Panel::new("Displacements (cushion relative to slab)", "t (s)", "mm")
+            .with(Series::line("delta_s (up-slope)", ds))
+            .with(Series::line("delta_a (axis)", da))
+            .with(Series::line("delta_n (opening +)", dn)),
+    )
+    .with(Panel::new("Opening", "t (s)", "mm").with(Series::line("", op)))
+    .columns(1);
+    png_out(dir, files, &format!("fig18_interface_probe_{safe}.png"), fig)
+}
+
+/// Fig. 20: opening history of every interface probe (`probes`: name, element).
+fn fig20(
+    probes: &[(String, usize)],
+    q: &QuakeFields,
+    dir: &Path,
+    files: &mut Vec<PathBuf>,
+) -> Result<(), String> {
+    let names: Vec<String> = probes
+        .iter()
+        .map(|(n, _)| format!("opening_{}_m", safe_name(n)))
+        .collect();
+    let mut csv = format!("{}\nt_s,{}\n", q.sampling(), names.join(","));
+    for (t, f) in q.times().zip(q.states()) {
+        let row: Vec<String> = probes
+            .iter()
+            .map(|(_, e)| f.interface_opening[*e].to_string())
+            .collect();
+        let _ = writeln!(csv, "{t},{}", row.join(","));
+    }
+    csv_out(dir, files, "fig20_opening.csv", csv)?;
+    let mut panel = Panel::new("Slab-cushion opening", "t (s)", "opening (mm)");
+    for (name, e) in probes {
+        let points = q
+            .times()
+            .zip(q.states())
+            .map(|(t, f)| (t, f.interface_opening[*e] * 1e3))
+            .collect();
+        panel.push(Series::line(name.clone(), points));
+    }
+    let fig = Figure::new("Opening history of the interface probes (seed Fig. 20)")
+        .with(panel)
+        .columns(1);
+    png_out(dir, files, "fig20_opening.png", fig)
+}
+
+/// Figs. 15–17: the residual interface state of every interface element, as a table and as
+/// plots over the unfolded face (y along the axis, z up).
+fn figs15_17(
+    mesh: &Mesh,
+    spec: &ProfilesSpec,
+    q: &QuakeFields,
+    dir: &Path,
+    files: &mut Vec<PathBuf>,
+) -> Result<(), String> {
+    let res = residual(&q.before, q.after());
+    let after = q.after();
+    let iface = elements_with_prefix(mesh, &spec.interface_prefix);
+    let mut csv = String::from(
+        "element_id,x_m,y_m,z_m,delta_s_m,delta_a_m,delta_n_m,opening_before_m,opening_after_m,normal_excluding_opening_m\n",
+    );
+    for &e in &iface {
+        let c = centre(mesh, e);
+        let d = &res.interface_jump[3 * e..3 * e + 3];
+        let normal = d[2] - res.interface_opening[e];
+        let _ = writeln!(
+            csv,
+            "{},{},{},{},{},{},{},{},{},{normal}",
+            mesh.elements[e].id,
+            c[0],
+            c[1],
+            c[2],
+            d[0],
+            d[1],
+            d[2],
+            q.before.interface_opening[e],
+            after.interface_opening[e]
+        );
+    }
+    for name in [
+        "fig15_interface_residual.csv",
+        "fig16_interface_normal.csv",
+        "fig17_interface_opening.csv",
+    ] {
+        csv_out(dir, files, name, csv.clone())?;
+    }
+    png_out(
+        dir,
+        files,
+        "fig15_interface_slip.png",
+        slip_vectors(mesh, &iface, &res),
+    )?;
+    let rows = face_rows(mesh, &iface);
+    let normal = |e: usize| (res.interface_jump[3 * e + 2] - res.interface_opening[e]) * 1e3;
+    let fig16 = face_lines(
+        mesh,
+        &rows,
+        "Residual normal displacement excluding opening (seed Fig. 16)",
+        "delta_n - opening (mm, opening +)",
+        normal,
+    );
+    png_out(dir, files, "fig16_interface_normal.png", fig16)?;
+    let fig17 = face_lines(
+        mesh,
+        &rows,
+        "Slab-cushion opening after the quake (seed Figs. 16, 17)",
+        "opening (mm)",
+        |e| after.interface_opening[e] * 1e3,
+    );
+    png_out(dir, files, "fig17_interface_opening.png", fig17)
+}
+
+/// At most 8 elevation rows of `elements` (every k-th row, the top one always included).
+fn face_rows(mesh: &Mesh, elements: &[usize]) -> Vec<(f64, Vec<usize>)> {
+    let groups = elevation_groups(mesh, elements);
+    let step = groups.len().div_ceil(8).max(1);
+    let n = groups.len();
+    groups
+        .into_iter()
+        .enumerate()
+        .filter(|(i, _)| (n - 1 - i).is_multiple_of(step))
+        .map(|(_, g)| g)
+        .collect()
+}
+
+/// One line per elevation row: `value` of each element against its centre y.
+fn face_lines(
+    mesh: &Mesh,
+    rows: &[(f64, Vec<usize>)],
+    title: &str,
+    x_label: &str,
+    value: impl Fn(usize) -> f64,
+) -> Figure {
+    let mut panel = Panel::new(
+        "along the dam axis, one line per elevation",
+        "y (m, dam axis)",
+        x_label,
+    );
+    for (z, row) in rows {
+        let mut points: Vec<(f64, f64)> = row.iter().map(|&e| (centre(mesh, e)[1], value(e))).collect();
+        points.sort_by(|a, b| a.0.total_cmp(&b.0));
+        panel.push(Series::line(format!("z = {z:.0} m"), points));
+    }
+    Figure::new(title).with(panel).columns(1)
+}
+
+/// Residual shear-displacement vectors (δ_a, δ_s) at the element centres on the unfolded face,
+/// scaled so that the longest is 5 % of the face's width.
+fn slip_vectors(mesh: &Mesh, iface: &[usize], res: &StageFields) -> Figure {
+    let centres: Vec<(f64, f64)> = iface
+        .iter()
+        .map(|&e| (centre(mesh, e)[1], centre(mesh, e)[2]))
+        .collect();
+    let width = centres.iter().map(|c| c.0).fold(f64::NEG_INFINITY, f64::max)
+        - centres.iter().map(|c| c.0).fold(f64::INFINITY, f64::min);
+    let slip = |e: usize| (res.interface_jump[3 * e + 1], res.interface_jump[3 * e]);
+    let longest = iface
+        .iter()
+        .map(|&e| slip(e).0.hypot(slip(e).1))
+        .fold(0.0, f64::max);
+    let k = magnification(width, longest);
+    let mut segments = Vec::new();
+    for (&e, &(y, z)) in iface.iter().zip(&centres) {
+        let (da, ds) = slip(e);
+        segments.extend([(y, z), (y + k * da, z + k * ds)]);
+    }
+    let panel = Panel::new(
+        format!(
+            "cushion relative to slab, (delta_a, delta_s) x {k}, longest {:.1} mm",
+            longest * 1e3
+        ),
+        "y (m, dam axis)",
+        "z (m), up the slope",
+    )
+    .with(Series::markers("", centres))
+    .with(Series::segments("residual shear displacement", segments));
+    Figure::new("Residual interface shear displacement (seed Fig. 15)")
+        .with(panel)
+        .columns(1)
+}
+
+/// The (name, element) of the slab probes and of the interface probes.
+type Located = (Vec<(String, usize)>, Vec<(String, usize)>);
+
+/// Finds the probes' elements and writes `quake_probes.csv`; probes without elements of their
+/// kind are left out.
+fn locate_probes(
+    mesh: &Mesh,
+    spec: &ProfilesSpec,
+    dir: &Path,
+    files: &mut Vec<PathBuf>,
+) -> Result<Located, String> {
+    let mut csv = String::from("name,element,at,element_id,x_m,y_m,z_m\n");
+    let (mut slab, mut iface) = (Vec::new(), Vec::new());
+    for probe in &spec.probes {
+        let Some(e) = probe_element(mesh, spec, probe) else {
+            continue;
+        };
+        let c = centre(mesh, e);
+        let kind = serde_json::to_value(probe.element).map_err(|e| e.to_string())?;
+        let at = serde_json::to_value(probe.at).map_err(|e| e.to_string())?;
+        let _ = writeln!(
+            csv,
+            "{},{},{},{},{},{},{}",
+            probe.name,
+            kind.as_str().unwrap_or_default(),
+            at.as_str().unwrap_or_default(),
+            mesh.elements[e].id,
+            c[0],
+            c[1],
+            c[2]
+        );
+        match probe.element {
+            ProbeElement::Slab => slab.push((probe.name.clone(), e)),
+            ProbeElement::Interface => iface.push((probe.name.clone(), e)),
+        }
+    }
+    csv_out(dir, files, "quake_probes.csv", csv)?;
+    Ok((slab, iface))
+}
+
+/// Writes the tables and plots of the module docs into `dir` from the closed results files `h5s`
+/// (the parts of a run, [`read_quake_fields`]); returns the files written (none when no quake
+/// is found or the mesh has no face slab).
+pub fn write_quake_figures(
+    scene: &Scene,
+    spec: &ProfilesSpec,
+    h5s: &[PathBuf],
+    dir: &Path,
+) -> Result<Vec<PathBuf>, String> {
+    // without a face slab (no central section) none of the seed's dam figures applies
+    if section_y(&scene.mesh, spec).is_none() {
+        return Ok(Vec::new());
+    }
+    let Some(q) = read_quake_fields(scene, h5s)? else {
+        return Ok(Vec::new());
+    };
+    let mesh = &scene.mesh;
+    let mut files = Vec::new();
+    fig12(mesh, spec, &q, dir, &mut files)?;
+    fig13(mesh, spec, &q, dir, &mut files)?;
+    let has_interfaces = !q.before.interface_jump.is_empty() && !q.after().interface_jump.is_empty();
+    if has_interfaces {
+        figs15_17(mesh, spec, &q, dir, &mut files)?;
+    }
+    let (slab, iface) = locate_probes(mesh, spec, dir, &mut files)?;
+    for (name, e) in &slab {
+        fig14(mesh, name, *e, &q, dir, &mut files)?;
+    }
+    if has_interfaces && !iface.is_empty() {
+        for (name, e) in &iface {
+            fig18(mesh, name, *e, &q, dir, &mut files)?;
+        }
+        fig20(&iface, &q, dir, &mut files)?;
+    }
+    Ok(files)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn magnification_is_round_and_draws_the_largest_displacement_at_about_5_percent() {
+        assert_eq!(magnification(171.0, 0.5), 10.0);
+        assert_eq!(magnification(171.0, 0.01), 500.0);
+        assert_eq!(magnification(100.0, 0.02), 200.0);
+        assert_eq!(magnification(10.0, 5.0), 1.0);
+        assert_eq!(magnification(10.0, 0.0), 1.0);
+        for (size, u) in [(171.0, 0.37), (355.0, 0.0042), (50.0, 1e-5)] {
+            let f = magnification(size, u);
+            assert!(
+                f * u <= 0.05 * size * (1.0 + 1e-12) && f * u > 0.01 * size,
+                "{size} {u} {f}"
+            );
+        }
+    }
+
+    #[test]
+    fn residual_is_after_minus_before_field_by_field() {
+        let before = StageFields {
+            name: "impound_2".into(),
+            displacement: vec![1.0, 2.0, 3.0],
+            stress: vec![-1.0; 6],
+            interface_opening: vec![0.5],
+            ..Default::default()
+        };
+        let after = StageFields {
+            name: "quake".into(),
+            displacement: vec![1.5, 1.0, 3.25],
+            stress: vec![-3.0; 6],
+            interface_opening: vec![0.75],
+            interface_jump: vec![1.0, 2.0, 3.0],
+            ..Default::default()
+        };
+        let r = residual(&before, &after);
+        assert_eq!(r.displacement, vec![0.5, -1.0, 0.25]);
+        assert_eq!(r.stress, vec![-2.0; 6]);
+        assert_eq!(r.interface_opening, vec![0.25]);
+        assert!(
+            r.interface_jump.is_empty(),
+            "a field missing before the quake has no residual"
+        );
+    }
+}
