@@ -181,7 +181,7 @@ fn figure(rows: &[(String, f64, Errors)], reference_wall: f64) -> Figure {
     let title = format!("Error against the reference run ({reference_wall:.0} s) and wall time");
     let mut fig = Figure::new(title).columns(2);
     for (q, name) in QUANTITIES.iter().enumerate() {
-        let mut panel = Panel::new(*name, "wall time (s)", "log10 relative error");
+        let mut panel = Panel::new(*name, "wall time (s)", "log10 relative error").legend_lower_right();
         for f in &families {
             let points = rows
                 .iter()

@@ -108,6 +108,9 @@ pub struct Panel {
     pub y_label: String,
     /// The data.
     pub series: Vec<Series>,
+    /// Legend in the lower right corner instead of the upper left (for data that crowd the
+    /// upper left, e.g. costly runs with large errors).
+    pub legend_lower_right: bool,
 }
 
 impl Panel {
@@ -118,7 +121,14 @@ impl Panel {
             x_label: x_label.into(),
             y_label: y_label.into(),
             series: Vec::new(),
+            legend_lower_right: false,
         }
+    }
+
+    /// Puts the legend in the lower right corner (builder style).
+    pub fn legend_lower_right(mut self) -> Self {
+        self.legend_lower_right = true;
+        self
     }
 
     /// Adds a series (builder style).
@@ -352,7 +362,10 @@ fn draw_panel<DB: DrawingBackend>(
     if any_label {
         chart
             .configure_series_labels()
-            .position(SeriesLabelPosition::UpperLeft)
+            .position(match panel.legend_lower_right {
+                true => SeriesLabelPosition::LowerRight,
+                false => SeriesLabelPosition::UpperLeft,
+            })
             .label_font((FAMILY, 13))
             .background_style(WHITE.mix(0.85))
             .border_style(BLACK)
