@@ -113,6 +113,18 @@ fn transfer(f: f64, zeta: f64) -> f64 {
     1.0 / cos_re.hypot(cos_im)
 }
 
+/// The tests that run `cfrd` under `mpirun` take this in turn: two 2-rank jobs at once on the
+/// 2-core machine (4 busy-polling ranks) slowed the shear column's 3,000 steps from 8 s to past
+/// mpirun's 300 s limit.
+static ONE_MPI_TEST_AT_A_TIME: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+/// Holds [`ONE_MPI_TEST_AT_A_TIME`] (also after another test panicked while holding it).
+fn mpi_turn() -> std::sync::MutexGuard<'static, ()> {
+    ONE_MPI_TEST_AT_A_TIME
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner)
+}
+
 fn run(np: usize, dir: &Path, out: &str) {
     let o = cfrd_mpi(np, dir, &["run", "column.yaml", "-o", out, "-q"]);
     assert!(o.status.success(), "cfrd run failed: {}", text(&o));
@@ -120,6 +132,7 @@ fn run(np: usize, dir: &Path, out: &str) {
 
 #[test]
 fn shear_column_amplification_at_the_first_frequency_matches_the_closed_form() {
+    let _turn = mpi_turn();
     let dir = tempdir();
     let (dt, duration, amp) = (0.01, 30.0, 0.1);
     write_record(dir.path(), dt, duration, |t| amp * (2.0 * PI * F1 * t).sin());
@@ -146,6 +159,7 @@ fn shear_column_amplification_at_the_first_frequency_matches_the_closed_form() {
 
 #[test]
 fn shear_column_free_vibration_period_and_rayleigh_decay() {
+    let _turn = mpi_turn();
     let dir = tempdir();
     let (dt, duration) = (0.01, 12.0);
     // two resonant cycles at f1, then free vibration
@@ -271,6 +285,7 @@ fn run_and_kill(dir: &Path, out: &str, restart: Option<&str>, t_kill: f64) {
 /// hold velocity and acceleration) ends bitwise where the uninterrupted run ends (2 ranks).
 #[test]
 fn a_quake_killed_twice_restarts_bitwise_from_its_step_checkpoints() {
+    let _turn = mpi_turn();
     let dir = tempdir();
     let d = dir.path();
     write_record(d, 0.01, 3.0, |t| {
