@@ -10,7 +10,7 @@ use common::*;
 use std::collections::HashMap;
 use std::path::Path;
 
-const MESH: &str = "{ fill_layers: 4, panel_width: 60.0, elements_per_panel: 1, rockfill_elements: 2, impoundment_stages: 2 }";
+const MESH: &str = SMALL_DAM_MESH;
 /// Seconds of the seed record cut for the test, from `CUT_FROM` s on.
 const DURATION: f64 = 0.5;
 const CUT_FROM: f64 = 5.0;
@@ -21,30 +21,17 @@ const PROBES: &str = "[ { name: I-A, elevation: 2711.0 }, \
     { name: I-D, elevation: 2852.0 }, { name: F-A, elevation: 2813.0, element: slab } ]";
 
 fn scene() -> String {
-    format!(
-        "name: quake-figures
-units: SI
-mesh:
-  cfrd: {MESH}
-materials:
-  fill: {{ model: elastic, young: 3.0e8, poisson: 0.3, density: 2150.0 }}
-  slab: {{ model: elastic, young: 25.5e9, poisson: 0.167, density: 2400.0 }}
-  interface: {{ model: hyperbolic }}
-  joint: {{ model: joint }}
-blocks:
-  'fill_*': {{ material: fill }}
-  'slab_*': {{ material: slab }}
-  'interface_*': {{ material: interface }}
-  'joint_*': {{ material: joint }}
-boundary:
-  - {{ set: foundation, fix: [x, y, z] }}
-  - {{ set: plinth, fix: [x, y, z] }}
-loads:
-  gravity: {{ g: [0.0, 0.0, -9.81] }}
-solver: {{ linear_solver: canonical_lu }}
-output: {{ profiles: {{ probes: {PROBES} }} }}
-earthquake: {{ record: record.csv, damping: {{ ratio: 0.02, frequencies: [1.0, 5.0] }}, output_every: 1 }}
-"
+    let tail = format!(
+        "output: {{ profiles: {{ probes: {PROBES} }} }}\n\
+         earthquake: {{ record: record.csv, damping: {{ ratio: 0.02, frequencies: [1.0, 5.0] }}, output_every: 1 }}"
+    );
+    small_dam(
+        ELASTIC_FILL,
+        "hyperbolic",
+        2400.0,
+        "",
+        "{ linear_solver: canonical_lu }",
+        &tail,
     )
 }
 
