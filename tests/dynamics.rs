@@ -239,48 +239,6 @@ fn the_committed_seed_record_is_reproduced_by_cfrd_accel() {
     );
 }
 
-/// The stage time of a step checkpoint inside the shake stage, `None` before it (or while the
-/// file is being replaced).
-fn time_in_shake(ckpt: &Path) -> Option<f64> {
-    let f = hdf5::File::open(ckpt).ok()?;
-    let done: u64 = f
-        .group("checkpoint")
-        .ok()?
-        .attr("stages_done")
-        .ok()?
-        .read_scalar()
-        .ok()?;
-    let path = f.dataset("checkpoint/load_path").ok()?.read_raw::<f64>().ok()?;
-    (done == 1).then(|| path[0])
-}
-
-/// Runs `column.yaml` on 2 ranks into `out` (restarting from `restart` if given) and kills it
-/// once its step checkpoint is past `t_kill` s of the shake stage.
-fn run_and_kill(dir: &Path, out: &str, restart: Option<&str>, t_kill: f64) {
-    let mut args = vec!["run", "column.yaml", "-o", out, "-q"];
-    if let Some(r) = restart {
-        args.extend(["--restart", r]);
-    }
-    let mut child = common::cfrd_mpi_spawn(2, dir, &args);
-    let ckpt = dir.join(out).join("checkpoint.h5");
-    let t0 = std::time::Instant::now();
-    while time_in_shake(&ckpt).is_none_or(|t| t < t_kill) {
-        assert!(
-            child.try_wait().unwrap().is_none(),
-            "{out}: the run ended before t = {t_kill} s"
-        );
-        assert!(
-            t0.elapsed().as_secs() < 240,
-            "{out}: no checkpoint past t = {t_kill} s"
-        );
-        std::thread::sleep(std::time::Duration::from_millis(5));
-    }
-    assert!(
-        !common::kill_tree(&mut child).success(),
-        "{out}: killed, not finished"
-    );
-}
-
 /// A quake killed twice inside the dynamic stage and restarted from its step checkpoints (which
 /// hold velocity and acceleration) ends bitwise where the uninterrupted run ends (2 ranks).
 #[test]
@@ -302,9 +260,10 @@ fn a_quake_killed_twice_restarts_bitwise_from_its_step_checkpoints() {
     )
     .unwrap();
     run(2, d, "full");
-    run_and_kill(d, "k1", None, 0.8);
-    run_and_kill(d, "k2", Some("k1/checkpoint.h5"), 1.6);
-    let t = time_in_shake(&d.join("k2/checkpoint.h5")).expect("a step checkpoint in the shake");
+    common::run_and_kill(d, "column.yaml", "k1", None, 0.8);
+    common::run_and_kill(d, "column.yaml", "k2", Some("k1/checkpoint.h5"), 1.6);
+    let t =
+        common::time_in_second_stage(&d.join("k2/checkpoint.h5")).expect("a step checkpoint in the shake");
     eprintln!("second kill at t = {t} s");
     let o = cfrd_mpi(
         2,

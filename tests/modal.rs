@@ -302,21 +302,6 @@ fn bad_modal_input_exits_2_naming_the_place() {
     }
 }
 
-/// The stage time of a step checkpoint inside the second stage, `None` before it (or while the
-/// file is being replaced).
-fn time_in_second_stage(ckpt: &Path) -> Option<f64> {
-    let f = hdf5::File::open(ckpt).ok()?;
-    let done: u64 = f
-        .group("checkpoint")
-        .ok()?
-        .attr("stages_done")
-        .ok()?
-        .read_scalar()
-        .ok()?;
-    let path = f.dataset("checkpoint/load_path").ok()?.read_raw::<f64>().ok()?;
-    (done == 1).then(|| path[0])
-}
-
 #[test]
 fn a_quake_damped_on_modes_restarts_bitwise_from_a_step_checkpoint() {
     // the restart recomputes the modes of the restored state: for the elastic column the same
@@ -338,19 +323,9 @@ fn a_quake_damped_on_modes_restarts_bitwise_from_a_step_checkpoint() {
     )
     .expect("scene written");
     modal_frequencies(2, d, "full");
-    let mut child = common::cfrd_mpi_spawn(2, d, &["run", "column.yaml", "-o", "killed", "-q"]);
+    common::run_and_kill(d, "column.yaml", "killed", None, 0.3);
     let ckpt = d.join("killed/checkpoint.h5");
-    let t0 = std::time::Instant::now();
-    while time_in_second_stage(&ckpt).is_none_or(|t| t < 0.3) {
-        assert!(
-            child.try_wait().expect("wait").is_none(),
-            "the run ended before t = 0.3 s"
-        );
-        assert!(t0.elapsed().as_secs() < 240, "no checkpoint past t = 0.3 s");
-        std::thread::sleep(std::time::Duration::from_millis(5));
-    }
-    assert!(!common::kill_tree(&mut child).success(), "killed, not finished");
-    let t = time_in_second_stage(&ckpt).expect("a step checkpoint in the shake");
+    let t = common::time_in_second_stage(&ckpt).expect("a step checkpoint in the shake");
     eprintln!("killed at t = {t} s");
     let o = cfrd_mpi(
         2,

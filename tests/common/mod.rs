@@ -247,3 +247,42 @@ solver: {solver}
 "
     )
 }
+
+/// The stage time of a step checkpoint inside a run's second stage (after one stage done),
+/// `None` before it (or while the file is being replaced).
+pub fn time_in_second_stage(ckpt: &Path) -> Option<f64> {
+    let f = hdf5::File::open(ckpt).ok()?;
+    let done: u64 = f
+        .group("checkpoint")
+        .ok()?
+        .attr("stages_done")
+        .ok()?
+        .read_scalar()
+        .ok()?;
+    let path = f.dataset("checkpoint/load_path").ok()?.read_raw::<f64>().ok()?;
+    (done == 1).then(|| path[0])
+}
+
+/// Runs `scene` on 2 ranks in `dir` into `out` (restarting from `restart` if given) and kills
+/// it once its step checkpoint is past `t_kill` s of the second stage.
+pub fn run_and_kill(dir: &Path, scene: &str, out: &str, restart: Option<&str>, t_kill: f64) {
+    let mut args = vec!["run", scene, "-o", out, "-q"];
+    if let Some(r) = restart {
+        args.extend(["--restart", r]);
+    }
+    let mut child = cfrd_mpi_spawn(2, dir, &args);
+    let ckpt = dir.join(out).join("checkpoint.h5");
+    let t0 = std::time::Instant::now();
+    while time_in_second_stage(&ckpt).is_none_or(|t| t < t_kill) {
+        assert!(
+            child.try_wait().unwrap().is_none(),
+            "{out}: the run ended before t = {t_kill} s"
+        );
+        assert!(
+            t0.elapsed().as_secs() < 240,
+            "{out}: no checkpoint past t = {t_kill} s"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    assert!(!kill_tree(&mut child).success(), "{out}: killed, not finished");
+}
