@@ -170,7 +170,8 @@ fn family(label: &str) -> &str {
 }
 
 /// One panel per quantity: log10 of the relative error against the wall time, one marker
-/// series per family of runs.
+/// series per family of runs, and the reference run's wall time as a vertical line over the
+/// whole decades that hold the errors (so the axis spans at least one decade).
 fn figure(rows: &[(String, f64, Errors)], reference_wall: f64) -> Figure {
     let mut families: Vec<&str> = Vec::new();
     for (label, _, _) in rows {
@@ -189,6 +190,21 @@ fn figure(rows: &[(String, f64, Errors)], reference_wall: f64) -> Figure {
                 .map(|(_, w, e)| (*w, e.values()[q].log10()))
                 .collect();
             panel.push(Series::markers(*f, points));
+        }
+        let logs = rows
+            .iter()
+            .map(|(_, _, e)| e.values()[q])
+            .filter(|e| *e > 0.0)
+            .map(f64::log10);
+        let (lo, hi) = logs.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), y| {
+            (a.min(y), b.max(y))
+        });
+        if lo.is_finite() {
+            let (lo, hi) = (lo.floor(), hi.ceil().max(lo.floor() + 1.0));
+            panel.push(Series::line(
+                "reference run",
+                vec![(reference_wall, lo), (reference_wall, hi)],
+            ));
         }
         fig.push(panel);
     }
