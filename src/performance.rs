@@ -289,16 +289,40 @@
 //! * **The interface integration rule** changes the slab stresses by 3–4 % and the deflection by
 //!   1 %, ten times more than any solution-control setting: it is a modelling choice (a
 //!   discretization of the interface, like the mesh), not a tolerance.
-//! * **The mesh** is not in this table: the medium mesh takes 10–20 min a run here, the fine one
-//!   hours (`MEDIUM=1` adds the medium scene as the reference mesh). What the mesh changes is in
-//!   [`crate::verification`] (coarse, medium and fine slab profiles).
+//! * **The mesh** decides far more than any of these settings (next section).
 //!
-//! Settings to pick, from these runs: **a quick look**, the seed scenes as they are (8 load
-//! steps, STOL 1e-4, Newton 1e-5), or STOL 1e-3 and Newton 1e-4 for a third less time at
-//! errors of about 1e-3; **a design check**, 16 load steps per stage (faster and about twice as
-//! accurate as 8 here); **a paper**, 16 load steps and a finer mesh, with the interface rule
-//! stated (and both rules compared), since the rule and the mesh, not the tolerances, decide
-//! the last digits that matter.
+//! ### The mesh
+//!
+//! `MEDIUM=1 bash scripts/accuracy_cost.sh RUNS` at commit cc66417 (the coarse runs above
+//! reused, the medium run alone on the otherwise idle machine): the medium hyperbolic seed
+//! scene (9,414 elements, 35,151 DOFs, 37 stages, the scene's settings) is the reference of
+//! the coarse runs. Table `scripts/figures/mesh/accuracy_cost.csv`. The fine mesh (76,502
+//! elements) takes hours here and is not run by the script; the medium mesh against it is in
+//! [`crate::verification`] (fine mesh against medium, commit 6549cb1, the same error measure).
+//!
+//! ![coarse against medium mesh][mesh]
+//!
+//! | run | wall time | Newton iterations / cut-backs | σ_s | σ_a | deflection | crest settlement |
+//! |---|---|---|---|---|---|---|
+//! | medium mesh, the scene's settings (reference) | 696.6 s | 1236 / 8 | | | | |
+//! | coarse mesh, the scene's settings | 25.3 s | 491 / 6 | 2.6e-1 | 2.7e-1 | 3.1e-1 | 1.5e-1 |
+//! | coarse mesh, 16 load steps | 21.7 s | 669 / 2 | 2.6e-1 | 2.7e-1 | 3.1e-1 | 1.5e-1 |
+//! | coarse mesh, Gauss 2×2 interface rule | 25.8 s | 503 / 5 | 2.5e-1 | 2.5e-1 | 3.2e-1 | 1.6e-1 |
+//! | fine against medium ([`crate::verification`]) | hours | | 8e-2 | 2.5e-2 | 7.6e-2 | |
+//!
+//! The coarse mesh (30 m slab panels, 8 fill layers) is 27 times cheaper than the medium one
+//! and 26–31 % off in the slab after impoundment, 15 % in the crest settlement: a hundred times
+//! the error of any load-path or tolerance setting above, and not reduced by any of them. The
+//! medium mesh is within 2.5–8 % of the fine one.
+//!
+//! Settings to pick, from these runs: **a quick look**, the coarse seed scenes as they are (8
+//! load steps, STOL 1e-4, Newton 1e-5; half a minute), for trends and for checking a scene,
+//! not for stresses; **a design check**, the medium mesh with 16 load steps per stage (faster
+//! and about twice as accurate as 8 on the coarse mesh; the mesh leaves 2.5–8 % against the
+//! fine one); **a paper**, the fine mesh (or a mesh study ending in it), 16 load steps, with
+//! the interface rule stated and both rules compared, since the mesh and the rule, not the
+//! tolerances, decide the digits that matter. Tighter STOL or Newton tolerances than the
+//! defaults buy nothing measurable on any mesh here.
 //!
 //! ## The seed quake (coarse mesh)
 //!
@@ -321,3 +345,4 @@
 //! The coarse GP-interface quake (`seed_coarse_gp_interface_quake.yaml`, the GP interface's
 //! defaults of main) cut back 10 times at t ≈ 4.06 s and was stopped: not yet measured.
 #![cfg_attr(doc, doc = embed_doc_image::embed_image!("accuracy", "scripts/figures/accuracy_cost.png"))]
+#![cfg_attr(doc, doc = embed_doc_image::embed_image!("mesh", "scripts/figures/mesh/accuracy_cost.png"))]
