@@ -271,6 +271,35 @@
 //!   `reversal_branch: trial` reads (I18) at the substep's trial point and follows both paths,
 //!   but changes the GP-interface results, so the seed scenes keep `start` until their figures
 //!   are redone ([`crate::material::interface_gp`]).
+//! * **The bounded GP-interface reading does not yet carry the coarse seed dam** (issue 19).
+//!   `normal_basis: strain` with `void_ratio_bound: smooth` bounds the material point's
+//!   closure ([`crate::material::interface_gp`] on branch `gpi2`, commit d83f6b1), but
+//!   `mpirun -n 2 cfrd run` of `seed_coarse_gp_interface.yaml` with it stalls: after a
+//!   converged load step the next step's Newton iterations leave the residual unchanged to
+//!   four digits from the first one (line search failed), the residual's floor falls with the
+//!   load increment to about newton_tol (1.000e-5) but not below, and interface elements run
+//!   out of substeps (NMAX) at some trial points. Measured variants (2 ranks, stopped by
+//!   mpirun's time limit; stage and load factor of the stall):
+//!
+//!   | interface reading (other keys as in the scene) | outcome |
+//!   |---|---|
+//!   | `strain` + `smooth` + `reversal_branch: trial` (the branch's default) | slab_3, λ = 0.042, 51 cut-backs in 560 s |
+//!   | the same with `reversal_branch: start` | slab_3, λ = 0.019 |
+//!   | the same with `start` and `integration_tol_ratio: 0.1` | slab_2, λ = 0.069 |
+//!   | `strain`, no bound, `trial` | slab_3, λ = 0.015 |
+//!   | `displacement` (main's normal reading) + `smooth` + `trial` | passes slab_3; impound_1 ends at λ = 0.179: closure at e_min (exit 3, 97 s) |
+//!   | `displacement`, no bound, `trial` | slab_2, λ = 0.040 |
+//!   | branch default + `tangent: numerical` | slab_2, λ = 0.069 |
+//!   | branch default + `integration_tol_ratio: 0.1` | slab_2, λ = 0.069 |
+//!   | both | slab_2, λ = 0.070 |
+//!   | both, and a linear joint (`kn_tens` = `kn_comp`) | slab_2, λ = 0.069 |
+//!   | main's reading (`displacement`, no bound, `start`) | runs (the seed figures) |
+//!
+//!   So neither the tangent, the integration tolerance nor the joints' kink removes the floor;
+//!   what every stalling variant shares is a GP-interface response that is not smooth in the
+//!   increment at that level, most likely the branch jumps of 0.1–0.3 kPa where τ crosses zero
+//!   after a reversal (measured at the material point). Main keeps its reading until a
+//!   continuous reversal rule lets the bounded one run.
 //! * Interfaces whose normal stress is released to zero (`tests/hard_cases.rs`,
 //!   `interfaces_released_to_zero_normal_stress`, ignored): two blocks on a zero-thickness
 //!   layer pushed 2 mm sideways while a 100 Pa normal pressure goes to 0. Mohr–Coulomb and
