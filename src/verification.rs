@@ -273,7 +273,7 @@
 //!   are redone ([`crate::material::interface_gp`]).
 //! * **The bounded GP-interface reading does not yet carry the coarse seed dam** (issue 19).
 //!   `normal_basis: strain` with `void_ratio_bound: smooth` bounds the material point's
-//!   closure ([`crate::material::interface_gp`] on branch `gpi2`, commit d83f6b1), but
+//!   closure ([`crate::material::interface_gp`] on branch `gpi2`, commit 930019d), but
 //!   `mpirun -n 2 cfrd run` of `seed_coarse_gp_interface.yaml` with it stalls: after a
 //!   converged load step the next step's Newton iterations leave the residual unchanged to
 //!   four digits from the first one (line search failed), the residual's floor falls with the
