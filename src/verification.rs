@@ -272,8 +272,10 @@
 //!   but changes the GP-interface results, so the seed scenes keep `start` until their figures
 //!   are redone ([`crate::material::interface_gp`]).
 //! * **The bounded GP-interface reading does not yet carry the coarse seed dam** (issue 19).
-//!   `normal_basis: strain` with `void_ratio_bound: smooth` bounds the material point's
-//!   closure ([`crate::material::interface_gp`] on branch `gpi2`, commit 930019d), but
+//!   Branch `gpi2` (commit 930019d, options and material-point measurements in its
+//!   `material::interface_gp`) bounds the material point's closure with `normal_basis:
+//!   strain` and `void_ratio_bound: smooth` (5.3 / 6.1 mm at 400 / 800 kPa, 8.0 mm after
+//!   10,000 cycles, e ≥ 0.150), but
 //!   `mpirun -n 2 cfrd run` of `seed_coarse_gp_interface.yaml` with it stalls: after a
 //!   converged load step the next step's Newton iterations leave the residual unchanged to
 //!   four digits from the first one (line search failed), the residual's floor falls with the
