@@ -4,7 +4,6 @@
 use super::error::SolveError;
 use super::model::{add_owned_rows, BlockStates, Model};
 use super::solid::Vector24;
-use crate::element::hex8::Hex8Geometry;
 use crate::linalg::petsc::Vector;
 use crate::parallel::{exact_sum, sum_u64};
 
@@ -94,14 +93,14 @@ impl Model<'_> {
         }
         let evaluated = match &mut self.blocks[b] {
             BlockStates::Solid(block) => {
-                let geo = Hex8Geometry::new(&mesh.element_coords(e)).map_err(|_| SolveError::Geometry {
-                    element: mesh.elements[e].id,
-                })?;
+                let geo = self.solid_geo[i]
+                    .as_ref()
+                    .expect("solid geometry built at set-up");
                 if trial_is_current {
-                    let r = block.evaluate_trial(be, &geo);
+                    let r = block.evaluate_trial(be, geo);
                     Ok((r.f_int, r.k.filter(|_| want_k)))
                 } else {
-                    block.evaluate(be, &geo, &d_u, want_k).map(|r| (r.f_int, r.k))
+                    block.evaluate(be, geo, &d_u, want_k).map(|r| (r.f_int, r.k))
                 }
             }
             BlockStates::Interface(block) => {

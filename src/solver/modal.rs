@@ -22,7 +22,6 @@ use super::error::SolveError;
 use super::model::{BlockStates, Model};
 use super::problem::Problem;
 use super::solid::{Matrix24, Vector24};
-use crate::element::hex8::Hex8Geometry;
 use crate::linalg::petsc::Matrix;
 use crate::linalg::slepc::Eps;
 use crate::parallel::{any_error, max_f64, sum_f64, sum_u64};
@@ -151,9 +150,12 @@ impl Model<'_> {
         let (b, be) = self.elem_block[i];
         let element = mesh.elements[e].id;
         match &mut self.blocks[b] {
-            BlockStates::Solid(block) => Hex8Geometry::new(&mesh.element_coords(e))
-                .map(|geo| block.elastic_stiffness(be, &geo))
-                .map_err(|_| SolveError::Geometry { element }),
+            BlockStates::Solid(block) => {
+                let geo = self.solid_geo[i]
+                    .as_ref()
+                    .expect("solid geometry built at set-up");
+                Ok(block.elastic_stiffness(be, geo))
+            }
             BlockStates::Interface(block) => {
                 let geo = self.iface_geo[i]
                     .as_ref()

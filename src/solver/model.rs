@@ -18,6 +18,7 @@ use super::interface::InterfaceElements;
 use super::report::InterfaceCounts;
 use super::solid::{SolidBlock, Vector24};
 use super::state_codec;
+use crate::element::hex8::Hex8Geometry;
 use crate::element::interface8::Interface8Geometry;
 use crate::element::interface_frame::FrameAxes;
 use crate::linalg::petsc::{Gather, Matrix, Petsc, Vector};
@@ -87,6 +88,9 @@ pub struct Model<'a> {
     pub(super) blocks: Vec<BlockStates>,
     /// Geometry of every evaluated interface element (`None` for solid elements).
     pub(super) iface_geo: Vec<Option<Interface8Geometry>>,
+    /// Gauss-point geometry of every evaluated solid element (`None` for interfaces), built
+    /// once: the mesh does not move (small strain), so every assembly reuses it.
+    pub(super) solid_geo: Vec<Option<Hex8Geometry>>,
     /// For every evaluated element: (block, index within the block's elements on this rank).
     pub(super) elem_block: Vec<(usize, usize)>,
     /// The tangent (the Jacobian once the integrator's shifts and the constraints are in).
@@ -123,6 +127,7 @@ impl<'a> Model<'a> {
         let mesh = &scene.mesh;
         let (elem_block, blocks) = Self::blocks_of(scene, &disc)?;
         let iface_geo = Self::interface_geometry(scene, &disc)?;
+        let solid_geo = Self::solid_geometry(scene, &disc, &iface_geo)?;
         let (d_nnz, o_nnz) = disc.preallocation(cells, mesh.num_nodes());
         let mut k = Matrix::aij(petsc, disc.n_owned_dofs, 3, &d_nnz, &o_nnz)?;
         let mut u = Vector::mpi(petsc, disc.n_owned_dofs, 3)?;
@@ -146,6 +151,7 @@ impl<'a> Model<'a> {
             disc,
             blocks,
             iface_geo,
+            solid_geo,
             elem_block,
             k,
             u,
@@ -212,6 +218,24 @@ impl<'a> Model<'a> {
             });
         }
         Ok(iface_geo)
+    }
+
+    /// The Gauss-point geometry of every evaluated solid element (`None` for interfaces).
+    fn solid_geometry(
+        scene: &Scene,
+        disc: &Discretization,
+        iface_geo: &[Option<Interface8Geometry>],
+    ) -> Result<Vec<Option<Hex8Geometry>>, SolveError> {
+        let mesh = &scene.mesh;
+        let solid = |(&e, iface): (&u32, &Option<Interface8Geometry>)| match iface {
+            Some(_) => Ok(None),
+            None => Hex8Geometry::new(&mesh.element_coords(e as usize))
+                .map(Some)
+                .map_err(|_| SolveError::Geometry {
+                    element: mesh.elements[e as usize].id,
+                }),
+        };
+        disc.elements.iter().zip(iface_geo).map(solid).collect()
     }
 
     /// The full pattern once: every element, placed or not yet, and every diagonal block, so

@@ -7,7 +7,6 @@ use super::model::BlockStates;
 use super::problem::Problem;
 use super::report::{LocalResults, NodeMotion};
 use super::solid::Vector24;
-use crate::element::hex8::Hex8Geometry;
 use crate::tensor::{Strain6, Stress6};
 
 impl Problem<'_> {
@@ -26,13 +25,13 @@ impl Problem<'_> {
         let u_loc = self.model.local_u()?;
         let model = &self.model;
         out.elements = model.disc.owned_elements.clone();
-        for (i, &e) in model.disc.elements.iter().enumerate() {
+        for i in 0..model.disc.elements.len() {
             if !model.disc.element_owned[i] {
                 continue;
             }
             let loc = &model.disc.element_local[i];
             let ue = Vector24::from_fn(|k, _| u_loc[3 * loc[k / 3] as usize + k % 3]) - model.elem_ref[i];
-            self.element_result(i, e as usize, &ue, &mut out)?;
+            self.element_result(i, &ue, &mut out);
         }
         Ok(out)
     }
@@ -73,17 +72,10 @@ impl Problem<'_> {
     }
 
     /// Appends the mean strain and stress (solids) or the interface output and mean jump
-    /// (interfaces) of the `i`-th evaluated element (input index `e`, displacement `ue` since
-    /// its placement) to `out`; zeros for an element not yet placed.
-    fn element_result(
-        &self,
-        i: usize,
-        e: usize,
-        ue: &Vector24,
-        out: &mut LocalResults,
-    ) -> Result<(), SolveError> {
+    /// (interfaces) of the `i`-th evaluated element (displacement `ue` since its placement) to
+    /// `out`; zeros for an element not yet placed.
+    fn element_result(&self, i: usize, ue: &Vector24, out: &mut LocalResults) {
         let model = &self.model;
-        let mesh = &self.scene.mesh;
         let (b, be) = model.elem_block[i];
         let (mut strain, mut stress) = (Strain6::default(), Stress6::default());
         let mut iface = Default::default();
@@ -91,9 +83,9 @@ impl Problem<'_> {
         match &model.blocks[b] {
             _ if !model.active_block[b] => {}
             BlockStates::Solid(block) => {
-                let geo = Hex8Geometry::new(&mesh.element_coords(e)).map_err(|_| SolveError::Geometry {
-                    element: mesh.elements[e].id,
-                })?;
+                let geo = model.solid_geo[i]
+                    .as_ref()
+                    .expect("solid geometry built at set-up");
                 let eps = geo.strain_increments(ue);
                 strain = eps
                     .iter()
@@ -117,6 +109,5 @@ impl Problem<'_> {
         out.stress.push(stress);
         out.interface.push(iface);
         out.jump.push(jump);
-        Ok(())
     }
 }
