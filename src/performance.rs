@@ -10,19 +10,26 @@
 //! [the fine run](#the-fine-run) · [Newton](#newton-iterations-load-steps-and-the-integration-noise) ·
 //! [linear solvers on the seed dam](#linear-solvers-on-the-seed-dam) ·
 //! [checkpoints](#checkpoints) · [solver benchmark](#solver-benchmark) ·
-//! [material updates](#material-updates) · [accuracy against cost](#accuracy-against-cost)
+//! [material updates](#material-updates) · [side by side](#side-by-side-element-geometry-built-once) ·
+//! [accuracy against cost](#accuracy-against-cost)
 //!
 //! ## The main job
 //!
 //! `bash ci/run-default.sh` runs the coarse seed scene with the GP interface on 2 ranks: 25 s of
 //! solving alone on the machine (row `GP interface` of the [coarse table](#seed-dam-runs)).
-//! Measured with `nice -n 10 /usr/bin/time -v bash ci/run-default.sh` at commit 0a9d568 (script
-//! of commit e27b2d4; dependencies already built), while other builds kept the load average at
-//! 5–9 on the 2 cores: 6 min 40 s in all, of which 1 min 15 s rebuilding `cfrd` and 323 s
-//! solving (`total_seconds`). Its counters are those of the table's row (532 Newton iterations,
-//! 118 steps, 5 cut-backs, 127 factorizations, 118 open and 295 slipping interface points), and
-//! its slab stresses and deflections at the elevations of the coarse slab table in
-//! [`crate::verification`] are the table's GP column.
+//!
+//! The README's two commands on a fresh clone of commit ecc4f9d (`git clone`, an empty
+//! `target/`; the Debian packages already installed, so `ci/install-deps.sh` had nothing to
+//! do), one after the other under `/usr/bin/time` on the otherwise idle machine:
+//!
+//! | command | wall time | of which |
+//! |---|---|---|
+//! | `bash ci/run-default.sh` | 156 s | 2 min 05 s building, 28.8 s solving (`total_seconds`): 532 Newton iterations, 5 cut-backs, the table's row |
+//! | `bash ci/test.sh` | 1125.5 s (18 min 46 s) | fmt, clippy (2 min 45 s with its build), `cargo doc`, the test build and 23 test targets: 643 passed, 0 failed, 15 ignored |
+//!
+//! Its slab stresses and deflections at the elevations of the coarse slab table in
+//! [`crate::verification`] are the table's GP column. `cfrd run` without a scene runs the
+//! same study at a small size (the embedded default, [`crate::guide`]).
 //!
 //! ## Seed dam runs
 //!
@@ -249,6 +256,17 @@
 //! The generalized-plasticity models pay for substepping (2.5–3 substeps per update at these
 //! increments); with `tangent: numerical` the rockfill update costs 13 integrations instead of
 //! one.
+//!
+//! ## Side by side: element geometry built once
+//!
+//! `scripts/bench_side_by_side.sh BASE` runs a scene with this tree's build and a base commit's
+//! build in alternating pairs (a warm-up pair dropped) and reports the medians and their
+//! ratio. Commit 06a1658 builds each solid element's Gauss-point geometry once at set-up
+//! instead of at every assembly (issue 20). `bash scripts/bench_side_by_side.sh HEAD` on its
+//! working tree against fbe8388, the coarse hyperbolic seed scene on 2 ranks, 5 pairs: this
+//! build 27.34 s (25.76–28.17), the base 26.25 s (25.86–29.33), ratio of the medians 1.04,
+//! pairwise 0.96–1.06, results identical (`cfrd compare`: 0). No measurable change: the
+//! geometry is a few hundred flops per element against the GP integration and the LU.
 //!
 //! ## Accuracy against cost
 //!
