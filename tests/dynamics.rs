@@ -265,31 +265,7 @@ fn a_quake_killed_twice_restarts_bitwise_from_its_step_checkpoints() {
     let t =
         common::time_in_second_stage(&d.join("k2/checkpoint.h5")).expect("a step checkpoint in the shake");
     eprintln!("second kill at t = {t} s");
-    let o = cfrd_mpi(
-        2,
-        d,
-        &[
-            "run",
-            "column.yaml",
-            "-o",
-            "rest",
-            "-q",
-            "--restart",
-            "k2/checkpoint.h5",
-        ],
-    );
-    assert!(o.status.success(), "{}", text(&o));
-    let o = common::cfrd(
-        d,
-        &[
-            "compare",
-            "full/results.h5",
-            "rest/results.h5",
-            "--tolerance",
-            "0",
-        ],
-    );
-    assert!(o.status.success(), "restarted quake differs: {}", text(&o));
+    common::restart_matches_bitwise(d, "column.yaml", "k2/checkpoint.h5", "rest", "full");
     let last = |out: &str| {
         let h = top_history(&d.join(out), 0.5);
         (h.displacement.last().copied(), h.acceleration.last().copied())

@@ -327,31 +327,7 @@ fn a_quake_damped_on_modes_restarts_bitwise_from_a_step_checkpoint() {
     let ckpt = d.join("killed/checkpoint.h5");
     let t = common::time_in_second_stage(&ckpt).expect("a step checkpoint in the shake");
     eprintln!("killed at t = {t} s");
-    let o = cfrd_mpi(
-        2,
-        d,
-        &[
-            "run",
-            "column.yaml",
-            "-o",
-            "rest",
-            "-q",
-            "--restart",
-            "killed/checkpoint.h5",
-        ],
-    );
-    assert!(o.status.success(), "{}", text(&o));
-    let o = common::cfrd(
-        d,
-        &[
-            "compare",
-            "full/results.h5",
-            "rest/results.h5",
-            "--tolerance",
-            "0",
-        ],
-    );
-    assert!(o.status.success(), "restarted quake differs: {}", text(&o));
+    common::restart_matches_bitwise(d, "column.yaml", "killed/checkpoint.h5", "rest", "full");
 }
 
 /// The lowest frequency (Hz) of a cantilever of square section `t` × `t` and length `length`,

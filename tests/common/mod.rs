@@ -286,3 +286,18 @@ pub fn run_and_kill(dir: &Path, scene: &str, out: &str, restart: Option<&str>, t
     }
     assert!(!kill_tree(&mut child).success(), "{out}: killed, not finished");
 }
+
+/// Restarts `scene` in `dir` on 2 ranks from `checkpoint` into `out` and asserts that its
+/// results equal those of the uninterrupted run in `full` bit for bit (`cfrd compare
+/// --tolerance 0`).
+pub fn restart_matches_bitwise(dir: &Path, scene: &str, checkpoint: &str, out: &str, full: &str) {
+    let o = cfrd_mpi(2, dir, &["run", scene, "-o", out, "-q", "--restart", checkpoint]);
+    assert!(o.status.success(), "{}", text(&o));
+    let (a, b) = (format!("{full}/results.h5"), format!("{out}/results.h5"));
+    let o = cfrd(dir, &["compare", &a, &b, "--tolerance", "0"]);
+    assert!(
+        o.status.success(),
+        "restarted run differs from {full}: {}",
+        text(&o)
+    );
+}
