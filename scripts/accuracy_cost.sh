@@ -24,14 +24,7 @@
 #   comparable when nothing else runs on the machine.
 set -euo pipefail
 
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-cd "$root"
-cargo build --release
-bin="${CARGO_TARGET_DIR:-$root/target}/release/cfrd"
-runs="${1:-$(mktemp -d)}"
-mkdir -p "$runs"
-source ci/env.sh
-export MPIEXEC_TIMEOUT=5400
+source "$(dirname "${BASH_SOURCE[0]}")/run_dir_preamble.sh" "$@"
 
 # variant NAME MESH STEPS STOL NEWTON_TOL RULE: writes the scene RUN_DIR/NAME.yaml
 variant() {

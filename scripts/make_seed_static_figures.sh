@@ -27,14 +27,7 @@
 # results are expected to be identical.
 set -euo pipefail
 
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-cd "$root"
-cargo build --release
-bin="${CARGO_TARGET_DIR:-$root/target}/release/cfrd"
-runs="${1:-$(mktemp -d)}"
-mkdir -p "$runs"
-source ci/env.sh
-export MPIEXEC_TIMEOUT=5400
+source "$(dirname "${BASH_SOURCE[0]}")/run_dir_preamble.sh" "$@"
 models=(hyperbolic mohr_coulomb gp_interface)
 
 run() { # model ranks
