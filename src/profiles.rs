@@ -125,6 +125,30 @@ pub struct StageFields {
     pub interface_opening: Vec<f64>,
 }
 
+#[cfg(feature = "native")]
+impl StageFields {
+    /// Reads the fields of the results step in group `g` of the file `h5` (missing fields are
+    /// empty), naming it `stage`.
+    pub fn read(g: &hdf5::Group, h5: &Path, stage: String) -> Result<Self, String> {
+        let read = |field: &str| -> Result<Vec<f64>, String> {
+            if !g.link_exists(field) {
+                return Ok(Vec::new());
+            }
+            g.dataset(field)
+                .and_then(|d| d.read_raw::<f64>())
+                .map_err(|e| format!("{}: {}/{field}: {e}", h5.display(), g.name()))
+        };
+        Ok(StageFields {
+            name: stage,
+            displacement: read("displacement")?,
+            stress: read("stress")?,
+            interface_traction: read("interface_traction")?,
+            interface_jump: read("interface_jump")?,
+            interface_opening: read("interface_opening")?,
+        })
+    }
+}
+
 /// One elevation of the slab profile.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SlabRow {

@@ -87,26 +87,6 @@ impl QuakeFields {
     }
 }
 
-/// Reads one results step's fields (missing fields are empty).
-fn read_fields(g: &hdf5::Group, h5: &Path, stage: String) -> Result<StageFields, String> {
-    let read = |field: &str| -> Result<Vec<f64>, String> {
-        if !g.link_exists(field) {
-            return Ok(Vec::new());
-        }
-        g.dataset(field)
-            .and_then(|d| d.read_raw::<f64>())
-            .map_err(|e| format!("{}: {}/{field}: {e}", h5.display(), g.name()))
-    };
-    Ok(StageFields {
-        name: stage,
-        displacement: read("displacement")?,
-        stress: read("stress")?,
-        interface_traction: read("interface_traction")?,
-        interface_jump: read("interface_jump")?,
-        interface_opening: read("interface_opening")?,
-    })
-}
-
 /// Reads the first earthquake stage of the closed results files `h5s`, the parts of one run in
 /// the order they ran (one file for a run in one go). A step found again in a later part (a run
 /// killed after it and restarted from an earlier checkpoint) replaces the earlier part's steps
@@ -135,7 +115,7 @@ pub fn read_quake_fields(scene: &Scene, h5s: &[PathBuf]) -> Result<Option<QuakeF
             let g = file.group(&format!("/steps/{name}")).map_err(|e| e.to_string())?;
             let this = stage_name(&g).unwrap_or_default();
             if this == previous {
-                before = Some(read_fields(&g, h5, this)?);
+                before = Some(StageFields::read(&g, h5, this)?);
             } else if this == stage.name {
                 let time: f64 = g
                     .attr("time")
@@ -147,7 +127,7 @@ pub fn read_quake_fields(scene: &Scene, h5s: &[PathBuf]) -> Result<Option<QuakeF
                     q.steps.pop();
                 }
                 q.t.push(t);
-                q.steps.push(read_fields(&g, h5, this)?);
+                q.steps.push(StageFields::read(&g, h5, this)?);
             }
         }
     }

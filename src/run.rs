@@ -707,14 +707,6 @@ pub fn write_profiles_from_results(
         }
         for name in step_names(&file, h5)? {
             let g = file.group(&format!("/steps/{name}")).map_err(|e| e.to_string())?;
-            let read = |field: &str| -> Result<Vec<f64>, String> {
-                if !g.link_exists(field) {
-                    return Ok(Vec::new());
-                }
-                g.dataset(field)
-                    .and_then(|d| d.read_raw::<f64>())
-                    .map_err(|e| format!("{}: /steps/{name}/{field}: {e}", h5.display()))
-            };
             let stage = stage_name(&g).unwrap_or_else(|| name.clone());
             // Figs. 7-11 are the static states: a dynamic stage's steps are not theirs
             let dynamic = scene
@@ -725,14 +717,7 @@ pub fn write_profiles_from_results(
                 continue;
             }
             stages.retain(|s| s.name != stage);
-            stages.push(crate::profiles::StageFields {
-                name: stage,
-                displacement: read("displacement")?,
-                stress: read("stress")?,
-                interface_traction: read("interface_traction")?,
-                interface_jump: read("interface_jump")?,
-                interface_opening: read("interface_opening")?,
-            });
+            stages.push(crate::profiles::StageFields::read(&g, h5, stage)?);
         }
     }
     // a part that ran only dynamic stages (restarted into a quake) has no static figures
