@@ -252,10 +252,7 @@ fn fill_disk(d: &Path, size: &str, env: &[(&str, &str)]) -> Result<(i32, String)
             .filter(|f| f.starts_with('.'))
             .all(|f| !out.join(f).exists());
         assert!(gone, "{size}: the next run removes the temporaries");
-        return Ok((
-            code,
-            msg.lines().find(|l| l.starts_with("error:")).unwrap_or("").into(),
-        ));
+        return Ok((code, first_error_line(&msg)));
     }
     if code == 4 {
         let named = msg.contains("error: writing") || msg.contains("did not finish within");
@@ -283,11 +280,7 @@ fn fill_disk(d: &Path, size: &str, env: &[(&str, &str)]) -> Result<(i32, String)
     if left.iter().any(|f| f == "results.h5") {
         assert_same_results(d, "full", out.to_str().unwrap());
     }
-    let line = msg
-        .lines()
-        .find(|l| l.starts_with("error:"))
-        .unwrap_or("")
-        .to_string();
+    let line = first_error_line(&msg);
     Ok((code, line))
 }
 
@@ -374,11 +367,7 @@ fn fill_disk_at_the_end(d: &Path, size: u64) -> (i32, String) {
     if out.join("results.h5").exists() {
         assert_same_results(d, "full", out.to_str().unwrap());
     }
-    let line = msg
-        .lines()
-        .find(|l| l.starts_with("error:"))
-        .unwrap_or("")
-        .to_string();
+    let line = first_error_line(&msg);
     assert!(code == 0 || line.starts_with("error: writing"), "{size}: {msg}");
     (code, line)
 }
@@ -486,4 +475,12 @@ fn one_rank_killed_inside_a_stage_ends_the_job_and_the_run_restarts_bitwise() {
         &["run", "col.yaml", "-o", "rest", "-q", "--restart", "kept.h5"],
     );
     assert_same_results(d, "full", "rest");
+}
+
+/// The first `error:` line of a run's output (empty when there is none).
+fn first_error_line(msg: &str) -> String {
+    msg.lines()
+        .find(|l| l.starts_with("error:"))
+        .unwrap_or("")
+        .to_string()
 }
