@@ -157,12 +157,12 @@ fn shear_column_amplification_at_the_first_frequency_matches_the_closed_form() {
     }
 }
 
-#[test]
-fn shear_column_free_vibration_period_and_rayleigh_decay() {
-    let _turn = mpi_turn();
+/// Free vibration of the column after two resonant cycles at f₁, integrated with `dynamic`
+/// (its record: `record.csv`) at the record's `dt` on 1 rank: the period of the top's
+/// displacement (s) and the damping ratio of its logarithmic decrement.
+fn free_vibration(dt: f64, dynamic: &str) -> (f64, f64) {
     let dir = tempdir();
-    let (dt, duration) = (0.01, 12.0);
-    // two resonant cycles at f1, then free vibration
+    let duration = 12.0;
     write_record(dir.path(), dt, duration, |t| {
         if t < 2.0 {
             (2.0 * PI * F1 * t).sin()
@@ -170,10 +170,7 @@ fn shear_column_free_vibration_period_and_rayleigh_decay() {
             0.0
         }
     });
-    column_scene(
-        dir.path(),
-        "{ record: record.csv, damping: { ratio: 0.05, frequencies: [1.0, 5.0] }, output_every: 1 }",
-    );
+    column_scene(dir.path(), dynamic);
     run(1, dir.path(), "out");
     let h = top_history(&dir.path().join("out"), dt);
     // upward zero crossings and the following peaks of the top displacement after the burst
@@ -196,6 +193,19 @@ fn shear_column_free_vibration_period_and_rayleigh_decay() {
     }
     let n = crossings.len() - 1;
     let period = (crossings[n] - crossings[0]) / n as f64;
+    let m = peaks.len() - 1;
+    let delta = (peaks[0] / peaks[m]).ln() / m as f64;
+    (period, delta / (4.0 * PI * PI + delta * delta).sqrt())
+}
+
+#[test]
+fn shear_column_free_vibration_period_and_rayleigh_decay() {
+    let _turn = mpi_turn();
+    let dt = 0.01;
+    let (period, zeta) = free_vibration(
+        dt,
+        "{ record: record.csv, damping: { ratio: 0.05, frequencies: [1.0, 5.0] }, output_every: 1 }",
+    );
     // the damped first mode of the discrete column: consistent-mass FE frequency within 0.1 %
     // of the shear beam's, Newmark's elongation at Δt/T = 0.01, and √(1 − ζ²)
     let wdt = 2.0 * PI * F1 * dt;
@@ -205,13 +215,94 @@ fn shear_column_free_vibration_period_and_rayleigh_decay() {
         (period / want - 1.0).abs() < 1e-3,
         "period {period:.5} s, expected {want:.5} s"
     );
-    let m = peaks.len() - 1;
-    let delta = (peaks[0] / peaks[m]).ln() / m as f64;
-    let zeta = delta / (4.0 * PI * PI + delta * delta).sqrt();
-    eprintln!("damping ratio from the decay {zeta:.5} over {m} cycles");
+    eprintln!("damping ratio from the decay {zeta:.5}");
     assert!(
         (zeta / 0.05 - 1.0).abs() < 0.02,
         "damping ratio from the decay {zeta:.4}, want 0.05"
+    );
+}
+
+/// The principal root λ of HHT-α's amplification matrix for the undamped oscillator at
+/// ω·Δt = `wdt` (Hilber, Hughes and Taylor 1977, the force-averaged form of
+/// `cfrd::solver::integrator::newmark`): the numerical period over the exact one and the
+/// damping ratio of the decay |λ| per step.
+fn hht_closed_form(alpha: f64, wdt: f64) -> (f64, f64) {
+    let (beta, gamma) = ((1.0 - alpha).powi(2) / 4.0, 0.5 - alpha);
+    let (wi, wh, w2) = (1.0 / (1.0 + alpha), alpha / (1.0 + alpha), wdt * wdt);
+    // one step with Δt = 1 from (u, v, a)
+    let step = |u: f64, v: f64, a: f64| {
+        let sa = 1.0 / beta;
+        let known = sa * u + v / beta + (0.5 / beta - 1.0) * a;
+        let u1 = (wi * known + wh * w2 * u) / (w2 + wi * sa);
+        let a1 = (u1 - u) / beta - v / beta - (0.5 / beta - 1.0) * a;
+        [u1, v + (1.0 - gamma) * a + gamma * a1, a1]
+    };
+    let cols = [step(1.0, 0.0, 0.0), step(0.0, 1.0, 0.0), step(0.0, 0.0, 1.0)];
+    let m = nalgebra::Matrix3::from_fn(|i, j| cols[j][i]);
+    let root = m
+        .complex_eigenvalues()
+        .iter()
+        .copied()
+        .max_by(|a, b| a.im.abs().total_cmp(&b.im.abs()))
+        .expect("three eigenvalues");
+    let (rho, phase) = (root.norm(), root.arg().abs());
+    let delta = -2.0 * PI * rho.ln() / phase;
+    (wdt / phase, delta / (4.0 * PI * PI + delta * delta).sqrt())
+}
+
+/// The one damped mode u_n = A·ρⁿ·cos(nθ + φ) that fits the samples `u` best by linear
+/// prediction (Prony: u_{n+1} = 2ρ·cos θ·u_n − ρ²·u_{n−1}, least squares): (ρ, θ).
+fn prony(u: &[f64]) -> (f64, f64) {
+    let (mut s11, mut s12, mut s22, mut t1, mut t2) = (0.0, 0.0, 0.0, 0.0, 0.0);
+    for w in u.windows(3) {
+        let (x2, x1, y) = (w[0], w[1], w[2]);
+        (s11, s12, s22) = (s11 + x1 * x1, s12 + x1 * x2, s22 + x2 * x2);
+        (t1, t2) = (t1 + x1 * y, t2 + x2 * y);
+    }
+    let det = s11 * s22 - s12 * s12;
+    let (c1, c2) = ((t1 * s22 - t2 * s12) / det, (s11 * t2 - s12 * t1) / det);
+    let rho = (-c2).sqrt();
+    (rho, (c1 / (2.0 * rho)).acos())
+}
+
+#[test]
+fn hht_free_vibration_decays_by_the_schemes_closed_form() {
+    // undamped column, HHT-α with α = −0.3 at Δt = 0.1 s (ω₁Δt ≈ 0.63): the only damping is
+    // the scheme's; the higher modes (ωΔt ≥ 1.9) die out first, then the first mode's decay
+    // and period per step are read by linear prediction
+    let _turn = mpi_turn();
+    let (dt, alpha, duration) = (0.1, -0.3, 60.0);
+    let dir = tempdir();
+    write_record(dir.path(), dt, duration, |t| {
+        if t < 2.0 {
+            (2.0 * PI * F1 * t).sin()
+        } else {
+            0.0
+        }
+    });
+    column_scene(
+        dir.path(),
+        &format!("{{ record: record.csv, hht_alpha: {alpha}, output_every: 1 }}"),
+    );
+    run(1, dir.path(), "out");
+    let h = top_history(&dir.path().join("out"), dt);
+    let from = h.t.iter().position(|&t| t > 10.0).expect("steps");
+    let (rho, theta) = prony(&h.displacement[from..]);
+    let delta = -2.0 * PI * rho.ln() / theta;
+    let zeta = delta / (4.0 * PI * PI + delta * delta).sqrt();
+    let period = 2.0 * PI * dt / theta;
+    // the 20-element column's first frequency (cfrd::verification, modal table)
+    let f1 = 1.0002570;
+    let (elongation, want_zeta) = hht_closed_form(alpha, 2.0 * PI * f1 * dt);
+    let want_period = elongation / f1;
+    eprintln!("HHT α = {alpha}, Δt = {dt} s: period {period:.5} s (closed form {want_period:.5}), damping ratio {zeta:.6} (closed form {want_zeta:.6})");
+    assert!(
+        (period / want_period - 1.0).abs() < 1e-3,
+        "period {period:.5} s, closed form {want_period:.5} s"
+    );
+    assert!(
+        want_zeta > 1e-3 && (zeta / want_zeta - 1.0).abs() < 0.02,
+        "damping ratio {zeta:.6}, closed form {want_zeta:.6}"
     );
 }
 
@@ -243,16 +334,30 @@ fn the_committed_seed_record_is_reproduced_by_cfrd_accel() {
 /// hold velocity and acceleration) ends bitwise where the uninterrupted run ends (2 ranks).
 #[test]
 fn a_quake_killed_twice_restarts_bitwise_from_its_step_checkpoints() {
+    killed_twice_restarts_bitwise(
+        "{ record: record.csv, damping: { ratio: 0.05, frequencies: [1.0, 5.0] }, output_every: 50 }",
+    );
+}
+
+#[test]
+fn an_hht_quake_killed_twice_restarts_bitwise_with_its_force_history() {
+    // HHT-α carries h = C·v + f_int − f_ext from step to step: the checkpoint must hold it
+    killed_twice_restarts_bitwise(
+        "{ record: record.csv, hht_alpha: -0.1, damping: { ratio: 0.05, frequencies: [1.0, 5.0] }, output_every: 50 }",
+    );
+}
+
+/// The column under a decaying 1.3 Hz record integrated with `dynamic`, run on 2 ranks with
+/// step checkpoints, killed in the quake twice and restarted: its results equal those of the
+/// uninterrupted run bit for bit.
+fn killed_twice_restarts_bitwise(dynamic: &str) {
     let _turn = mpi_turn();
     let dir = tempdir();
     let d = dir.path();
     write_record(d, 0.01, 3.0, |t| {
         2.0 * (2.0 * PI * 1.3 * t).sin() * (-0.3 * t).exp()
     });
-    column_scene(
-        d,
-        "{ record: record.csv, damping: { ratio: 0.05, frequencies: [1.0, 5.0] }, output_every: 50 }",
-    );
+    column_scene(d, dynamic);
     let yaml = std::fs::read_to_string(d.join("column.yaml")).unwrap();
     std::fs::write(
         d.join("column.yaml"),

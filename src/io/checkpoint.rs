@@ -185,6 +185,9 @@ pub fn write(
         if let Some(r) = &p.rates {
             file.write_table("/checkpoint/velocity", &node_plan, 3, &r.velocity)?;
             file.write_table("/checkpoint/acceleration", &node_plan, 3, &r.acceleration)?;
+            if !r.history.is_empty() {
+                file.write_table("/checkpoint/hht_history", &node_plan, 3, &r.history)?;
+            }
         }
     }
     // the counters are the same on every rank; rank 0's are stored (timings are per run; the
@@ -354,7 +357,11 @@ pub fn read(
         let rates = if reader.shape("/checkpoint/velocity").is_ok() {
             let v = reader.read_owned::<f64>("/checkpoint/velocity", &node_plan)?;
             let a = reader.read_owned::<f64>("/checkpoint/acceleration", &node_plan)?;
-            Some((v, a))
+            let h = match reader.shape("/checkpoint/hht_history") {
+                Ok(_) => reader.read_owned::<f64>("/checkpoint/hht_history", &node_plan)?,
+                Err(_) => Vec::new(),
+            };
+            Some((v, a, h))
         } else {
             None
         };
@@ -397,10 +404,11 @@ pub fn read(
                     return Err(bad("the stored velocities do not fit the stage in progress"));
                 }
                 let rates = match rates {
-                    Some((v, a)) => Some(Rates {
+                    Some((v, a, h)) => Some(Rates {
                         velocity: sized("velocity", v, 3 * nn)?,
                         acceleration: sized("acceleration", a, 3 * nn)?,
                         ground: [0.0; 3],
+                        history: hht_history(h, stage, nn).map_err(|m| bad(&m))?,
                     }),
                     None => None,
                 };
@@ -465,4 +473,16 @@ pub fn restore(
     }
     *report = counters;
     Ok((state.stages_done, state.in_stage.map(|p| p.path)))
+}
+
+/// HHT-α's stored force history `h` of the stage in progress: 3 values per owned node when the
+/// stage integrates with α ≠ 0, none otherwise (a Newmark checkpoint cannot continue as HHT-α).
+fn hht_history(h: Vec<f64>, stage: &crate::scene::validate::Stage, nn: usize) -> Result<Vec<f64>, String> {
+    let alpha = stage.dynamic.as_ref().map_or(0.0, |d| d.alpha);
+    match (alpha != 0.0, h.len()) {
+        (false, 0) => Ok(h),
+        (true, n) if n == 3 * nn => Ok(h),
+        (true, 0) => Err("the stage integrates with HHT-α but the checkpoint holds no HHT history".into()),
+        _ => Err("/checkpoint/hht_history does not fit the stage in progress".into()),
+    }
 }

@@ -13,6 +13,7 @@
 //!       # or: damping: { ratio: 0.05, modes: [1, 3] }  anchors at the modal frequencies of
 //!       # modes 1 and 3 of the stage's start state (a modal analysis runs there, see `modal`)
 //!       mass: consistent                    # or lumped
+//!       # hht_alpha: -0.05                  # HHT-α instead of Newmark's β, γ (α ∈ [−1/3, 0])
 //!       output_every: 10                    # fields every 10 steps (0: at the end only)
 //! ```
 
@@ -41,6 +42,12 @@ pub struct DynamicSpec {
     /// Newmark's β and γ (default 1/4 and 1/2, average acceleration).
     #[serde(default)]
     pub newmark: NewmarkSpec,
+    /// HHT-α's α ∈ [−1/3, 0] (Hilber, Hughes and Taylor; spec architecture, the force-averaged
+    /// form): numerical damping of the high frequencies, second-order accurate; β = (1 − α)²/4
+    /// and γ = 1/2 − α then follow from α and `newmark` must be left out. Default: none
+    /// (Newmark).
+    #[serde(default)]
+    pub hht_alpha: Option<f64>,
     /// Mass matrix: `consistent` (default) or `lumped` (row sums).
     #[serde(default)]
     pub mass: MassKind,
@@ -140,8 +147,10 @@ pub struct DynamicStage {
     pub duration: f64,
     /// Time steps of the stage (duration / dt, rounded).
     pub steps: u32,
-    /// Newmark's β and γ.
+    /// Newmark's β and γ (unused when `alpha` ≠ 0).
     pub newmark: NewmarkSpec,
+    /// HHT-α's α (0: Newmark), which sets β and γ itself.
+    pub alpha: f64,
     /// Lumped mass.
     pub lumped: bool,
     /// Rayleigh damping (ratio and anchors).
@@ -185,6 +194,7 @@ pub fn resolve(
         ));
     }
     check_newmark(&spec.newmark).map_err(|m| inv("newmark", m))?;
+    let alpha = check_hht(spec.hht_alpha, &spec.newmark).map_err(|m| inv("hht_alpha", m))?;
     let damping = match &spec.damping {
         Some(d) => Some(check_damping(d).map_err(|m| inv("damping", m))?),
         None => None,
@@ -195,6 +205,7 @@ pub fn resolve(
         duration,
         steps: n as u32,
         newmark: spec.newmark,
+        alpha,
         lumped: spec.mass == MassKind::Lumped,
         damping,
         output_every: spec.output_every,
@@ -218,6 +229,19 @@ fn check_newmark(n: &NewmarkSpec) -> Result<(), String> {
             n.beta, n.gamma
         ))
     }
+}
+
+/// −1/3 ≤ α ≤ 0 (the unconditionally stable, second-order range of HHT-α), and no
+/// `newmark` of its own beside it; the α to use (0 without HHT-α).
+fn check_hht(alpha: Option<f64>, newmark: &NewmarkSpec) -> Result<f64, String> {
+    let Some(alpha) = alpha else { return Ok(0.0) };
+    if !(alpha.is_finite() && (-1.0 / 3.0..=0.0).contains(&alpha)) {
+        return Err(format!("{alpha} must be in [-1/3, 0]"));
+    }
+    if *newmark != NewmarkSpec::default() {
+        return Err("HHT-α sets β and γ itself: give either `newmark` or `hht_alpha`".into());
+    }
+    Ok(alpha)
 }
 
 /// 0 ≤ ζ < 1 and either 0 < f1 < f2, all finite, or modes 1 ≤ i < j.
@@ -249,4 +273,27 @@ fn check_damping(d: &RayleighSpec) -> Result<Damping, String> {
         ratio: d.ratio,
         anchors,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn hht_alpha_is_checked_and_excludes_a_newmark_of_its_own() {
+        let average = NewmarkSpec::default();
+        assert_eq!(check_hht(None, &average), Ok(0.0));
+        assert_eq!(check_hht(Some(-0.1), &average), Ok(-0.1));
+        assert_eq!(check_hht(Some(-1.0 / 3.0), &average), Ok(-1.0 / 3.0));
+        for bad in [-0.34, 0.05, f64::NAN, f64::NEG_INFINITY] {
+            let e = check_hht(Some(bad), &average).expect_err("out of range");
+            assert!(e.contains("[-1/3, 0]"), "{e}");
+        }
+        let own = NewmarkSpec {
+            beta: 0.3,
+            gamma: 0.6,
+        };
+        let e = check_hht(Some(0.0), &own).expect_err("both given");
+        assert!(e.contains("either `newmark` or `hht_alpha`"), "{e}");
+    }
 }

@@ -52,9 +52,13 @@ impl Problem<'_> {
             true => Some(self.model.initial_stiffness()?),
             false => None,
         };
-        let params = NewmarkParameters {
-            beta: d.newmark.beta,
-            gamma: d.newmark.gamma,
+        let params = match d.alpha != 0.0 {
+            true => NewmarkParameters::hht(d.alpha),
+            false => NewmarkParameters {
+                beta: d.newmark.beta,
+                gamma: d.newmark.gamma,
+                alpha: 0.0,
+            },
         };
         let stage = d.clone();
         let ground: GroundMotion = Box::new(move |t| stage.ground_acceleration(t));

@@ -62,4 +62,7 @@ pub struct Rates {
     pub acceleration: Vec<f64>,
     /// Ground acceleration (m/s², x, y, z).
     pub ground: [f64; 3],
+    /// HHT-α's force history h = C·v + f_int(u) − f_ext of the committed step, 3 values per
+    /// owned node; empty for Newmark ([`Newmark`]).
+    pub history: Vec<f64>,
 }
