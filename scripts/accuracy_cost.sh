@@ -17,6 +17,13 @@
 # min on 2 cores) at the scene's settings is the reference of the coarse runs with the scene's
 # settings, 16 load steps and the Gauss rule (the fine mesh takes hours: not run here):
 #   scripts/figures/mesh/accuracy_cost.csv, scripts/figures/mesh/accuracy_cost.png
+# With QUAKE=1 the time integration of the seed quake (issue 18) is studied instead, on the
+# coarse Mohr-Coulomb quake scene (inputs/scenes/seed_coarse_mohr_coulomb_quake.yaml, the 20 s
+# record; 10-40 min a run): time steps 0.02 and 0.01 s (the scene's), lumped mass and HHT-alpha
+# (alpha = -0.1) at 0.01 s, against the reference at 0.005 s (consistent mass, Newmark); fields
+# every 0.1 s in all. `cfrd accuracy --quake` compares the residual (after - before the quake)
+# slab stresses and deflection (seed Fig. 13) and the residual crest settlement:
+#   scripts/figures/quake/accuracy_cost.csv, scripts/figures/quake/accuracy_cost.png
 #
 # Usage: scripts/accuracy_cost.sh [RUN_DIR]
 #   RUN_DIR (default: a new temporary directory) keeps the runs; a run that already finished
@@ -25,6 +32,16 @@
 set -euo pipefail
 
 source "$(dirname "${BASH_SOURCE[0]}")/run_dir_preamble.sh" "$@"
+
+# quake_variant NAME DT OUTPUT_EVERY EXTRA: the coarse quake scene at time step DT with the
+# extra earthquake keys EXTRA (e.g. "mass: lumped, "), written to RUN_DIR/NAME.yaml
+quake_variant() {
+    local name=$1 dt=$2 every=$3 extra=$4
+    sed -e "s|^earthquake: { record: [^,]*, |earthquake: { record: $root/inputs/accel/seed_quake.csv, dt: $dt, $extra |" \
+        -e "s/output_every: 10 }/output_every: $every }/" \
+        -e "s/^name: .*/name: quake_accuracy_$name/" \
+        inputs/scenes/seed_coarse_mohr_coulomb_quake.yaml > "$runs/$name.yaml"
+}
 
 # variant NAME MESH STEPS STOL NEWTON_TOL RULE: writes the scene RUN_DIR/NAME.yaml
 variant() {
@@ -46,6 +63,21 @@ run() {
     mpirun -n 2 "$bin" run "$runs/$1.yaml" -o "$out" -q --checkpoint none > "$runs/$1.log" 2>&1 \
         || echo "$1 failed (exit $?), see $runs/$1.log"
 }
+
+if [ "${QUAKE:-0}" = 1 ]; then
+    quake_variant quake_reference 0.005 20 ""
+    run quake_reference
+    quake=()
+    for v in "dt_0.01 0.01 10" "dt_0.02 0.02 5" "lumped 0.01 10 mass: lumped, " "hht 0.01 10 hht_alpha: -0.1, "; do
+        read -r name dt every extra <<< "$v"
+        quake_variant "$name" "$dt" "$every" "$extra"
+        run "$name"
+        [ -f "$runs/$name/summary.json" ] && quake+=("$name=$runs/$name")
+    done
+    mkdir -p scripts/figures/quake
+    "$bin" accuracy --quake --reference "$runs/quake_reference" "${quake[@]}" -o scripts/figures/quake
+    exit 0
+fi
 
 names=()
 add() { variant "$@"; names+=("$1"); }

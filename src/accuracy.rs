@@ -11,14 +11,40 @@
 //! * the crest settlement after impoundment (the highest point of the central vertical of seed
 //!   Fig. 7, `fig07_dam_displacement.csv`): relative difference.
 //!
+//! With [`Study::Quake`] (`cfrd accuracy --quake`) the same four quantities are those the
+//! earthquake leaves behind (spec seismic §3.1 item 3): the slab stresses and deflection
+//! induced by the residual deformation (after − before the quake, seed Fig. 13, the rows
+//! `residual` of `fig13_residual_slab.csv`) and the residual crest settlement (−u_z of
+//! `residual_displacement_m` in `quake_summary.json`).
+//!
 //! The wall time is `total_seconds` of the run's `summary.json`.
 
 use crate::plot::{Figure, Panel, Series};
-use crate::profiles::{read_slab_table, SlabTableRow};
+use crate::profiles::{read_slab_csv, SlabTableRow};
 use std::path::{Path, PathBuf};
 
-/// The state compared: the end of the schedule.
+/// The state compared by the static study: the end of the schedule.
 const STATE: &str = "after impoundment";
+
+/// What a study compares (module docs).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Study {
+    /// The state after impoundment (seed Figs. 7–9).
+    Static,
+    /// What the earthquake leaves: residual slab stresses, deflection and crest settlement
+    /// (seed Fig. 13).
+    Quake,
+}
+
+impl Study {
+    /// The slab table, its state label and a word for the figure's title.
+    fn slab_source(self) -> (&'static str, &'static str, &'static str) {
+        match self {
+            Study::Static => ("fig08_slab_stress.csv", STATE, "after impoundment"),
+            Study::Quake => ("fig13_residual_slab.csv", "residual", "residual after the quake"),
+        }
+    }
+}
 
 /// The compared quantities of one run (see the module docs).
 #[derive(Debug, Clone, PartialEq)]
@@ -59,22 +85,37 @@ impl Errors {
 /// Names of the compared quantities (CSV columns and panel titles).
 pub const QUANTITIES: [&str; 4] = ["sigma_slope", "sigma_axis", "deflection", "crest_settlement"];
 
-/// Reads the compared quantities of the finished run in `dir`.
-pub fn read_run(dir: &Path) -> Result<RunOutcome, String> {
-    let mut slab: Vec<SlabTableRow> = read_slab_table(dir)
+/// Reads the quantities of `study` from the finished run in `dir`.
+pub fn read_run(dir: &Path, study: Study) -> Result<RunOutcome, String> {
+    let (table, state, _) = study.slab_source();
+    let mut slab: Vec<SlabTableRow> = read_slab_csv(&dir.join(table))
         .map_err(|e| e.to_string())?
         .into_iter()
-        .filter(|r| r.state == STATE)
+        .filter(|r| r.state == state)
         .collect();
     slab.sort_by(|a, b| a.z.total_cmp(&b.z));
     if slab.is_empty() {
-        return Err(format!("{}: no slab rows '{STATE}'", dir.display()));
+        return Err(format!("{}: no slab rows '{state}' in {table}", dir.display()));
     }
+    let crest_settlement = match study {
+        Study::Static => crest_settlement(&dir.join("fig07_dam_displacement.csv"))?,
+        Study::Quake => residual_crest_settlement(&dir.join("quake_summary.json"))?,
+    };
     Ok(RunOutcome {
         slab,
-        crest_settlement: crest_settlement(&dir.join("fig07_dam_displacement.csv"))?,
-        wall_seconds: wall_seconds(&dir.join("summary.json"))?,
+        crest_settlement,
+        wall_seconds: json_number(&dir.join("summary.json"), "total_seconds")?,
     })
+}
+
+/// −u_z of `residual_displacement_m` in a `quake_summary.json` (m, down +).
+fn residual_crest_settlement(path: &Path) -> Result<f64, String> {
+    let json = read_json(path)?;
+    json.get("residual_displacement_m")
+        .and_then(|u| u.get(2))
+        .and_then(serde_json::Value::as_f64)
+        .map(|uz| -uz)
+        .ok_or_else(|| format!("{}: no residual_displacement_m", path.display()))
 }
 
 /// −u_z at the highest row after impoundment of a `fig07_dam_displacement.csv`.
@@ -94,14 +135,18 @@ fn crest_settlement(path: &Path) -> Result<f64, String> {
         .ok_or_else(|| format!("{}: no row '{STATE}' with z_m and uz_m", path.display()))
 }
 
-/// `total_seconds` of a `summary.json`.
-fn wall_seconds(path: &Path) -> Result<f64, String> {
+/// A JSON file.
+fn read_json(path: &Path) -> Result<serde_json::Value, String> {
     let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    let json: serde_json::Value =
-        serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
-    json.get("total_seconds")
+    serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+/// The number `key` of a JSON file (e.g. `total_seconds` of a `summary.json`).
+fn json_number(path: &Path, key: &str) -> Result<f64, String> {
+    read_json(path)?
+        .get(key)
         .and_then(serde_json::Value::as_f64)
-        .ok_or_else(|| format!("{}: no total_seconds", path.display()))
+        .ok_or_else(|| format!("{}: no {key}", path.display()))
 }
 
 /// `y` at `z` on the polyline `(z, y)` sorted by z; constant beyond its ends.
@@ -141,12 +186,17 @@ pub fn errors(run: &RunOutcome, reference: &RunOutcome) -> Errors {
 }
 
 /// Writes `accuracy_cost.csv` and `accuracy_cost.png` into `out` for the runs `(label, dir)`
-/// against the run in `reference`; returns the files written.
-pub fn write_study(reference: &Path, runs: &[(String, PathBuf)], out: &Path) -> Result<Vec<PathBuf>, String> {
-    let reference = read_run(reference)?;
+/// against the run in `reference`, comparing what `study` names; returns the files written.
+pub fn write_study(
+    study: Study,
+    reference: &Path,
+    runs: &[(String, PathBuf)],
+    out: &Path,
+) -> Result<Vec<PathBuf>, String> {
+    let reference = read_run(reference, study)?;
     let mut rows = Vec::new();
     for (label, dir) in runs {
-        let run = read_run(dir)?;
+        let run = read_run(dir, study)?;
         rows.push((label.clone(), run.wall_seconds, errors(&run, &reference)));
     }
     let mut csv = format!("run,wall_s,{}\n", QUANTITIES.join(","));
@@ -158,7 +208,7 @@ pub fn write_study(reference: &Path, runs: &[(String, PathBuf)], out: &Path) -> 
     let files = [out.join("accuracy_cost.csv"), out.join("accuracy_cost.png")];
     crate::input::write_replacing(&files[0], csv.as_bytes())
         .map_err(|e| format!("{}: {e}", files[0].display()))?;
-    figure(&rows, reference.wall_seconds)
+    figure(&rows, reference.wall_seconds, study.slab_source().2)
         .save_png(&files[1])
         .map_err(|e| e.to_string())?;
     Ok(files.to_vec())
@@ -172,14 +222,14 @@ fn family(label: &str) -> &str {
 /// One panel per quantity: log10 of the relative error against the wall time, one marker
 /// series per family of runs, and the reference run's wall time as a vertical line over the
 /// whole decades that hold the errors (so the axis spans at least one decade).
-fn figure(rows: &[(String, f64, Errors)], reference_wall: f64) -> Figure {
+fn figure(rows: &[(String, f64, Errors)], reference_wall: f64, state: &str) -> Figure {
     let mut families: Vec<&str> = Vec::new();
     for (label, _, _) in rows {
         if !families.contains(&family(label)) {
             families.push(family(label));
         }
     }
-    let title = format!("Error against the reference run ({reference_wall:.0} s) and wall time");
+    let title = format!("Error against the reference run ({reference_wall:.0} s) and wall time, {state}");
     let mut fig = Figure::new(title).columns(2);
     for (q, name) in QUANTITIES.iter().enumerate() {
         let mut panel = Panel::new(*name, "wall time (s)", "log10 relative error").legend_lower_right();
@@ -255,6 +305,27 @@ mod tests {
     }
 
     #[test]
+    fn a_quake_run_is_read_from_its_residual_tables() {
+        let dir = tempfile::tempdir().unwrap();
+        let d = dir.path();
+        let slab = "state,z_m,sigma_slope_Pa,sigma_axis_Pa,deflection_m\n\
+                    before the quake,10,1,2,3\nresidual,20,-4,-5,0.25\nresidual,10,-6,-7,0.5\n";
+        std::fs::write(d.join("fig13_residual_slab.csv"), slab).unwrap();
+        std::fs::write(
+            d.join("quake_summary.json"),
+            r#"{"residual_displacement_m": [0.1, 0.0, -0.18]}"#,
+        )
+        .unwrap();
+        std::fs::write(d.join("summary.json"), r#"{"total_seconds": 600.5}"#).unwrap();
+        let run = read_run(d, Study::Quake).expect("quake run");
+        let z: Vec<f64> = run.slab.iter().map(|r| r.z).collect();
+        assert_eq!(z, [10.0, 20.0], "the residual rows, by elevation");
+        assert_eq!(run.slab[0].sigma_axis, -7.0);
+        assert_eq!(run.crest_settlement, 0.18);
+        assert_eq!(run.wall_seconds, 600.5);
+    }
+
+    #[test]
     fn families_group_the_variants_of_one_setting() {
         assert_eq!(family("steps_16"), "steps");
         assert_eq!(family("stol_1.0e-5"), "stol");
@@ -264,7 +335,9 @@ mod tests {
     #[test]
     fn a_run_without_its_tables_is_named() {
         let dir = tempfile::tempdir().unwrap();
-        let err = read_run(dir.path()).unwrap_err();
+        let err = read_run(dir.path(), Study::Static).unwrap_err();
         assert!(err.contains("fig08_slab_stress.csv"), "{err}");
+        let err = read_run(dir.path(), Study::Quake).unwrap_err();
+        assert!(err.contains("fig13_residual_slab.csv"), "{err}");
     }
 }

@@ -165,9 +165,13 @@ enum Command {
     /// `scripts/accuracy_cost.sh` makes the runs).
     Accuracy {
         /// The most accurate run, holding `fig08_slab_stress.csv`, `fig07_dam_displacement.csv`
-        /// and `summary.json`.
+        /// and `summary.json` (with `--quake`: `fig13_residual_slab.csv`, `quake_summary.json`).
         #[arg(long)]
         reference: PathBuf,
+        /// Compare what the earthquake leaves instead: the residual slab stresses and
+        /// deflection (seed Fig. 13) and the residual crest settlement.
+        #[arg(long)]
+        quake: bool,
         /// `LABEL=DIR` pairs of the runs to compare (`steps_4=runs/steps_4`).
         #[arg(required = true)]
         runs: Vec<String>,
@@ -359,8 +363,17 @@ fn main() -> ExitCode {
                 }
             }
         }
-        Command::Accuracy { reference, runs, out } => {
-            match label_pairs(&runs).and_then(|p| cfrd::accuracy::write_study(&reference, &p, &out)) {
+        Command::Accuracy {
+            reference,
+            quake,
+            runs,
+            out,
+        } => {
+            let study = match quake {
+                true => cfrd::accuracy::Study::Quake,
+                false => cfrd::accuracy::Study::Static,
+            };
+            match label_pairs(&runs).and_then(|p| cfrd::accuracy::write_study(study, &reference, &p, &out)) {
                 Ok(files) => {
                     for f in files {
                         println!("{}", f.display());

@@ -523,7 +523,13 @@ pub(crate) struct SlabTableRow {
 
 /// Reads the `fig08_slab_stress.csv` of a run directory.
 pub(crate) fn read_slab_table(dir: &Path) -> Result<Vec<SlabTableRow>, ProfilesError> {
-    let path = dir.join("fig08_slab_stress.csv");
+    read_slab_csv(&dir.join("fig08_slab_stress.csv"))
+}
+
+/// Reads a slab table with the columns `state,z_m,sigma_slope_Pa,sigma_axis_Pa,deflection_m`
+/// (`fig08_slab_stress.csv`, and `fig13_residual_slab.csv` of a quake).
+pub(crate) fn read_slab_csv(path: &Path) -> Result<Vec<SlabTableRow>, ProfilesError> {
+    let path = path.to_path_buf();
     let text = std::fs::read_to_string(&path).map_err(|source| ProfilesError::Io {
         path: path.clone(),
         source,
