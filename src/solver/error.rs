@@ -61,10 +61,12 @@ pub enum SolveError {
     Collective(String),
     /// A load step could not be completed even after cutting it back.
     #[error(
-        "load step from λ = {from:.6} to λ = {to:.6} failed after {cutbacks} cut-back(s); \
-         the last converged state is λ = {from:.6}: {source}"
+        "{} from {} to {} failed after {cutbacks} cut-back(s); the last converged state is {}: {source}",
+        kind.noun(), kind.at(*from), kind.at(*to), kind.at(*from)
     )]
     Step {
+        /// Load or time steps (for the message).
+        kind: super::step_control::StepKind,
         /// Last converged load factor.
         from: f64,
         /// Load factor of the failed attempt.

@@ -31,8 +31,8 @@ pub(super) struct StepTarget {
     pub targets: Vec<(usize, f64)>,
     /// Fixed DOFs (global rows).
     pub rows: Vec<i32>,
-    /// The step's load factor (printed by the monitor).
-    pub lambda: f64,
+    /// The step's end, "λ = …" or "t = … s" (printed by the monitor).
+    pub at: String,
 }
 
 /// Solves one step to equilibrium from the committed state (Newton on SNES with `snes`) and
@@ -264,8 +264,8 @@ impl SnesProblem for NewtonStep<'_, '_> {
         let opts = &self.model.scene.file.solver;
         if opts.monitor && self.model.comm.rank() == 0 {
             eprintln!(
-                "newton λ = {:.6} iteration {it}: relative residual {rel:.3e}{}",
-                self.target.lambda,
+                "newton {} iteration {it}: relative residual {rel:.3e}{}",
+                self.target.at,
                 if it > 0 {
                     format!(" ({linear_iterations} linear iterations)")
                 } else {

@@ -10,7 +10,7 @@ use super::loads::{add_placement_force, Loads};
 use super::model::Model;
 use super::newton::{self, StepTarget};
 use super::report::{InterfaceCounts, SolveReport};
-use super::step_control::StepControl;
+use super::step_control::{StepControl, StepKind};
 use crate::linalg::petsc::{CanonicalSettings, LinearMethod, Petsc, Snes};
 use crate::scene::schema::LinearSolver;
 use crate::scene::Scene;
@@ -121,9 +121,18 @@ impl<'a> Problem<'a> {
         report: &mut SolveReport,
     ) -> Result<(), SolveError> {
         let monitor = self.scene.file.solver.monitor && self.comm.rank() == 0;
-        path.advance(max_cutbacks, monitor, report, |t0, t1, report| {
+        let kind = self.step_kind();
+        path.advance(max_cutbacks, monitor, kind, report, |t0, t1, report| {
             self.solve_step(t0, t1, report)
         })
+    }
+
+    /// Whether the current stage steps in load (static) or in time (dynamic).
+    fn step_kind(&self) -> StepKind {
+        match self.scene.stages[self.stage].dynamic {
+            Some(_) => StepKind::Time,
+            None => StepKind::Load,
+        }
     }
 
     /// Solves the step from the converged stage time `t0` to `t1` to equilibrium (loads and
@@ -132,7 +141,7 @@ impl<'a> Problem<'a> {
     pub fn solve_step(&mut self, t0: f64, t1: f64, report: &mut SolveReport) -> Result<(), SolveError> {
         self.integrator.begin_step(t0, t1);
         let lambda = self.integrator.load_factor(t1);
-        let r = self.newton(lambda, report);
+        let r = self.newton(lambda, self.step_kind().at(t1), report);
         if r.is_err() {
             self.model.revert()?;
             return r;
@@ -141,8 +150,9 @@ impl<'a> Problem<'a> {
         r
     }
 
-    /// Newton on SNES for the step at load factor `lambda` ([`newton`]).
-    fn newton(&mut self, lambda: f64, report: &mut SolveReport) -> Result<(), SolveError> {
+    /// Newton on SNES for the step at load factor `lambda` ([`newton`]); `at` names the step's
+    /// end for the monitor.
+    fn newton(&mut self, lambda: f64, at: String, report: &mut SolveReport) -> Result<(), SolveError> {
         let mut f_ext = self.model.u.duplicate()?;
         let terms = &self.scene.stages[self.stage].terms;
         self.loads
@@ -152,7 +162,7 @@ impl<'a> Problem<'a> {
             f_ext,
             targets: self.constraints.targets(self.model.disc.dof_lo, lambda),
             rows: self.constraints.rows(),
-            lambda,
+            at,
         };
         let mut snes = self
             .snes

@@ -11,6 +11,34 @@
 use super::error::SolveError;
 use super::report::SolveReport;
 
+/// What a stage's time is, for messages: a static stage's load factor λ or a dynamic stage's
+/// time t (s).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StepKind {
+    /// Load steps over λ ∈ [0, 1].
+    Load,
+    /// Time steps over t (s).
+    Time,
+}
+
+impl StepKind {
+    /// "λ = 0.500000" or "t = 4.060000 s".
+    pub fn at(self, t: f64) -> String {
+        match self {
+            StepKind::Load => format!("λ = {t:.6}"),
+            StepKind::Time => format!("t = {t:.6} s"),
+        }
+    }
+
+    /// "load step" or "time step".
+    pub fn noun(self) -> &'static str {
+        match self {
+            StepKind::Load => "load step",
+            StepKind::Time => "time step",
+        }
+    }
+}
+
 /// Where the stepping of a stage stands. Step checkpoints store `t`, `dt` and `streak`; `t_end`
 /// and `dt_max` follow from the scene.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -90,11 +118,12 @@ impl StepControl {
     /// One converged step: `attempt(t0, t1, report)` solves the step from the converged time
     /// `t0` to `t1` (and leaves the problem at its committed state when it fails); a
     /// recoverable failure is cut back, at most `max_cutbacks` times in a row. `monitor` prints
-    /// each cut-back (rank 0 only).
+    /// each cut-back (rank 0 only); `kind` names the stage's time in messages.
     pub fn advance(
         &mut self,
         max_cutbacks: u32,
         monitor: bool,
+        kind: StepKind,
         report: &mut SolveReport,
         mut attempt: impl FnMut(f64, f64, &mut SolveReport) -> Result<(), SolveError>,
     ) -> Result<(), SolveError> {
@@ -111,7 +140,7 @@ impl StepControl {
                 }
                 Err(e) if e.recoverable() && cuts < max_cutbacks => {
                     if monitor {
-                        eprintln!("step to λ = {next:.6} cut back: {e}");
+                        eprintln!("{} to {} cut back: {e}", kind.noun(), kind.at(next));
                     }
                     cuts += 1;
                     report.cutbacks += 1;
@@ -119,6 +148,7 @@ impl StepControl {
                 }
                 Err(e) => {
                     return Err(SolveError::Step {
+                        kind,
                         from: self.t,
                         to: next,
                         cutbacks: cuts,
@@ -164,7 +194,7 @@ mod tests {
         let mut s = StepControl::new(1.0, 1);
         let mut report = SolveReport::default();
         let mut calls = 0;
-        let r = s.advance(3, false, &mut report, |_, t1, _| {
+        let r = s.advance(3, false, StepKind::Load, &mut report, |_, t1, _| {
             calls += 1;
             if t1 > 0.3 {
                 Err(SolveError::Collective("too far".into()))
@@ -174,9 +204,27 @@ mod tests {
         });
         assert!(r.is_ok());
         assert_eq!((calls, report.cutbacks, s.t), (3, 2, 0.25));
-        let r = s.advance(0, false, &mut report, |_, _, _| {
+        let r = s.advance(0, false, StepKind::Load, &mut report, |_, _, _| {
             Err(SolveError::Collective("no".into()))
         });
         assert!(matches!(r, Err(SolveError::Step { cutbacks: 0, .. })));
+    }
+
+    #[test]
+    fn a_failed_time_step_is_named_in_seconds() {
+        let mut s = StepControl::new(20.0, 2000);
+        s.accept(s.target());
+        let mut report = SolveReport::default();
+        let e = s
+            .advance(0, false, StepKind::Time, &mut report, |_, _, _| {
+                Err(SolveError::Collective("no".into()))
+            })
+            .expect_err("fails");
+        let m = e.to_string();
+        assert!(
+            m.starts_with("time step from t = 0.010000 s to t = 0.020000 s failed after 0 cut-back(s)")
+                && m.contains("the last converged state is t = 0.010000 s: no"),
+            "{m}"
+        );
     }
 }
