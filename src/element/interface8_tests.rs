@@ -756,6 +756,7 @@ fn el3_gp_interface_stiffness_scales_with_one_over_t() {
         let gp = GpInterface::new(GpInterfaceParams {
             t,
             stiffness_basis: basis,
+            normal_basis: basis,
             ..GpInterfaceParams::default()
         })
         .expect("params");

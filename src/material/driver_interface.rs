@@ -170,8 +170,19 @@ pub fn direct_shear<M: InterfaceModel>(
     Ok(rows)
 }
 
+/// Smallest bracket of the normal increment (m) below which a step without an exact normal
+/// equilibrium takes the closed side (see [`normal_equilibrium`]).
+const BRACKET_MIN: f64 = 1e-13;
+
+/// One evaluation of the normal equilibrium: the trial state, the residual t_n + σ_n,target,
+/// its slope with respect to δ_n and the substep count.
+type NormalEval<S> = (S, f64, f64, u32);
+
 /// Solves t_n(Δδ) + σ_n,target(δ_n) = 0 for the normal increment of one step by Newton with
-/// backtracking; returns the converged trial state, Δδ_n and the substep count.
+/// backtracking; returns the converged trial state, Δδ_n and the substep count. When Newton
+/// stalls, the root is bracketed by the iterates and bisected; where σ_n(δ_n) jumps across the
+/// target (a branch change of a GP law inside the step, spec G7: under stress control an exact
+/// solution may not exist), the closed side of a [`BRACKET_MIN`] bracket is taken.
 fn normal_equilibrium<M: InterfaceModel>(
     model: &M,
     prev: &M::State,
@@ -180,7 +191,7 @@ fn normal_equilibrium<M: InterfaceModel>(
     inc: [f64; 2],
     step: usize,
 ) -> Result<(M::State, f64, u32), DriverError> {
-    let eval = |d_n: f64| -> Result<(M::State, f64, f64, u32), DriverError> {
+    let eval = |d_n: f64| -> Result<NormalEval<M::State>, DriverError> {
         let up = model
             .update(prev, &Local3::new(inc[0], inc[1], d_n))
             .map_err(|source| DriverError::Material { step, source })?;
@@ -189,8 +200,18 @@ fn normal_equilibrium<M: InterfaceModel>(
         Ok((up.state, residual, up.tangent[(2, 2)] + d_target, up.substeps))
     };
     let scale = control.initial_sigma_n().abs().max(1.0);
+    // residual < 0: σ_n above its target (too closed), the root lies at a larger δ_n
+    let mut bracket = (f64::NEG_INFINITY, f64::INFINITY);
+    let mut record = |d_n: f64, residual: f64| {
+        if residual < 0.0 {
+            bracket.0 = bracket.0.max(d_n);
+        } else {
+            bracket.1 = bracket.1.min(d_n);
+        }
+    };
     let mut d_n = 0.0;
     let (mut state, mut residual, mut slope, mut substeps) = eval(d_n)?;
+    record(d_n, residual);
     for _ in 0..MAX_ITER {
         if residual.abs() <= NORMAL_TOL * scale {
             return Ok((state, d_n, substeps));
@@ -201,7 +222,16 @@ fn normal_equilibrium<M: InterfaceModel>(
         let mut alpha = 1.0;
         let correction = -residual / slope;
         loop {
-            let trial = eval(d_n + alpha * correction)?;
+            // a failed update (e.g. a closure beyond the GP interface's void-ratio bound) is a
+            // correction that went too far: backtrack
+            let trial = match eval(d_n + alpha * correction) {
+                Err(_) if alpha >= 1e-6 => {
+                    alpha *= 0.5;
+                    continue;
+                }
+                other => other?,
+            };
+            record(d_n + alpha * correction, trial.1);
             if trial.1.abs() < residual.abs() || alpha < 1e-6 {
                 d_n += alpha * correction;
                 (state, residual, slope, substeps) = trial;
@@ -213,11 +243,37 @@ fn normal_equilibrium<M: InterfaceModel>(
     if residual.abs() <= NORMAL_TOL * scale {
         return Ok((state, d_n, substeps));
     }
+    if bracket.0.is_finite() && bracket.1.is_finite() {
+        return bisect_normal(&eval, bracket, NORMAL_TOL * scale);
+    }
     Err(DriverError::NoConvergence {
         step,
         residual,
         target: control.target(jump_n + d_n).0,
     })
+}
+
+/// Bisection of the normal equilibrium on a bracket (δ_n with σ_n above, δ_n with σ_n below the
+/// target) down to `tol` in the residual, or to [`BRACKET_MIN`], where the closed side is taken.
+fn bisect_normal<S, F>(eval: &F, bracket: (f64, f64), tol: f64) -> Result<(S, f64, u32), DriverError>
+where
+    F: Fn(f64) -> Result<NormalEval<S>, DriverError>,
+{
+    let (mut closed, mut open) = bracket;
+    while open - closed > BRACKET_MIN {
+        let mid = 0.5 * (closed + open);
+        let (state, residual, _, substeps) = eval(mid)?;
+        if residual.abs() <= tol {
+            return Ok((state, mid, substeps));
+        }
+        if residual < 0.0 {
+            closed = mid;
+        } else {
+            open = mid;
+        }
+    }
+    let (state, _, _, substeps) = eval(closed)?;
+    Ok((state, closed, substeps))
 }
 
 /// Prescribed 3D jump path: every component of every step is given. Starts from

@@ -27,6 +27,7 @@
 use super::gp_integrator::{cosine, Branch, GpModelFunctions, GpPoint, PlasticData, StageIncrement};
 use super::interface_gp::{
     ElasticVoidRatio, FhMode, GpBranch, GpInterface, GpInterfaceState, PeakForm, ReversalBranch,
+    VoidRatioBound,
 };
 use crate::error::MaterialError;
 use nalgebra::{Matrix3, SVector, Vector2, Vector3};
@@ -34,6 +35,9 @@ use nalgebra::{Matrix3, SVector, Vector2, Vector3};
 /// Floor of the void ratio in the elastic factor (1+e)/e under `elastic_void_ratio = current`
 /// (caps it at 101), and of |e| in the error measure (spec tag INF).
 pub const VOID_RATIO_FLOOR: f64 = 0.01;
+/// Floor of the closure factor g of `void_ratio_bound = smooth` (caps the normal stiffening
+/// at 10⁶, reached only by a strain-controlled closure beyond the bound).
+pub const CLOSURE_FACTOR_FLOOR: f64 = 1e-6;
 /// Cap of √(ρ_max/ρ) (spec (I12): ρ ≥ 0.01·ρ_max).
 pub const MAPPING_RATIO_CAP: f64 = 10.0;
 /// Below this |r − r_A| the mapping direction is taken from the trial increment (spec (I12)).
@@ -244,8 +248,10 @@ impl GpInterface {
     /// D_s = D_s0·((1+ê)/ê)·[(σ̂_n/p_a)² + (τ/p_a)²]^0.5,   D_n = (D_n0/D_s0)·D_s,   σ̂_n = max(σ_n, σ_min)
     /// ```
     ///
-    /// times the stiffness-basis factor (t under `displacement`, 1 under `strain`), with
-    /// ê = e0 under `elastic_void_ratio = initial` and ê = max(e, 0.01) under `current`.
+    /// times the stiffness-basis factors (λ_s for D_s, λ_n for D_n: t under `displacement`,
+    /// 1 under `strain`), with ê = e0 under `elastic_void_ratio = initial` and
+    /// ê = max(e, 0.01) under `current`; D_n is divided by the closure factor g(e) of
+    /// [`Self::closure_factor`].
     pub fn elastic_moduli(&self, sigma_n: f64, tau: f64, void_ratio: f64) -> (f64, f64) {
         let p = &self.params;
         let sig = sigma_n.max(p.sigma_min);
@@ -253,9 +259,28 @@ impl GpInterface {
             ElasticVoidRatio::Initial => p.e0,
             ElasticVoidRatio::Current => void_ratio.max(VOID_RATIO_FLOOR),
         };
-        let ds =
-            self.basis_factor * p.ds0 * (1.0 + e) / e * ((sig / p.pa).powi(2) + (tau / p.pa).powi(2)).sqrt();
-        (ds, ds * p.dn0 / p.ds0)
+        let d = p.ds0 * (1.0 + e) / e * ((sig / p.pa).powi(2) + (tau / p.pa).powi(2)).sqrt();
+        let dn = self.normal_factor * d * p.dn0 / p.ds0 / self.closure_factor(void_ratio);
+        (self.basis_factor * d, dn)
+    }
+
+    /// Closure factor g of `void_ratio_bound = smooth` (issue 19; module docs of
+    /// [`super::interface_gp`], "Normal response"):
+    ///
+    /// ```text
+    /// x = clamp((e − e_min)/(e0 − e_min), 0, 1),   g = max(1 − (1 − x)², CLOSURE_FACTOR_FLOOR)
+    /// ```
+    ///
+    /// g = 1 for e ≥ e0 and under `void_ratio_bound = none`.
+    pub fn closure_factor(&self, void_ratio: f64) -> f64 {
+        let p = &self.params;
+        match p.void_ratio_bound {
+            VoidRatioBound::None => 1.0,
+            VoidRatioBound::Smooth => {
+                let x = ((void_ratio - p.e_min) / (p.e0 - p.e_min)).clamp(0.0, 1.0);
+                (1.0 - (1.0 - x) * (1.0 - x)).max(CLOSURE_FACTOR_FLOOR)
+            }
+        }
     }
 
     /// State parameter ψ = e − e_c with e_c = e_Γ − Δe_c − λ·ln(σ̂_n/p_a) (spec (I6)–(I8)).
@@ -349,7 +374,7 @@ impl GpInterface {
             map.u
         };
         let (gs, gn, _) = direction((p.mc + p.km * psi) * map.ratio, eta, rd_alpha, p.c0);
-        let ng = Vector3::new(e_img[0] * gs, e_img[1] * gs, gn);
+        let ng = Vector3::new(e_img[0] * gs, e_img[1] * gs, self.normal_flow(gn, void_ratio));
         // (I15): loading direction at the image point, η̄ = |r_C|.
         let eta_bar = map.image.norm();
         let (fs, fnn, _) = direction((p.mf + p.km * psi) * map.ratio, eta_bar, rd_alpha, p.c0);
@@ -359,7 +384,7 @@ impl GpInterface {
             FhMode::Literal => p.fh,
             FhMode::Memory => (map.ratio * map.ratio).powf(p.fh),
         };
-        let h = self.basis_factor * p.h0 / (1.0 + psi).max(0.05)
+        let h = self.directional_basis(&n) * p.h0 / (1.0 + psi).max(0.05)
             * (sig / p.pa)
             * map.peak_distance
             * (1.0 + map.rho).powi(-2)
@@ -378,6 +403,29 @@ impl GpInterface {
             eta_p,
             map,
         }
+    }
+
+    /// Normal component of the flow direction n_g (I14): the unit-vector component `gn`,
+    /// times the square of the closure factor g(e) of [`Self::closure_factor`] where it is
+    /// contractive (gn > 0), so that cyclic compaction slows down as x² near e_min.
+    fn normal_flow(&self, gn: f64, void_ratio: f64) -> f64 {
+        if gn > 0.0 {
+            gn * self.closure_factor(void_ratio).powi(2)
+        } else {
+            gn
+        }
+    }
+
+    /// Strain-space factor of H0 (I16) along the unit loading direction n (I15):
+    ///
+    /// ```text
+    /// λ_H = λ_s·(n_s² + n_a²) + λ_n·n_n²
+    /// ```
+    ///
+    /// λ_s under shear loading, λ_n under pure normal loading (τ = 0, the c0 limit); the same
+    /// λ as D^e when both bases agree.
+    fn directional_basis(&self, n: &Vector3<f64>) -> f64 {
+        self.basis_factor * (n[0] * n[0] + n[1] * n[1]) + self.normal_factor * n[2] * n[2]
     }
 
     /// The integrator point of a (closed) state.
@@ -627,5 +675,33 @@ mod tests {
         assert!((s * s + n * n - 1.0).abs() < 1e-14 && n > 0.0);
         let (_, n, _) = direction(0.8, 1.2, 0.13, 1e-4);
         assert!(n < 0.0, "dilation above the phase-transformation line");
+    }
+
+    #[test]
+    fn closure_factor_is_one_above_e0_and_linear_near_e_min() {
+        use crate::material::interface_gp::GpInterfaceParams;
+        let m = GpInterface::new(GpInterfaceParams::default()).expect("valid");
+        let (e0, e_min) = (m.params.e0, m.params.e_min);
+        assert_eq!(m.closure_factor(e0), 1.0);
+        assert_eq!(m.closure_factor(e0 + 0.1), 1.0);
+        // C1 at e0: g = 1 − (1 − x)².
+        let x = 0.99;
+        let g = m.closure_factor(e_min + x * (e0 - e_min));
+        assert!((1.0 - g - (1.0 - x) * (1.0 - x)).abs() < 1e-12, "{g}");
+        // g ≈ 2x near e_min, monotonic in between, floored beyond the bound.
+        let x = 1e-3;
+        let g = m.closure_factor(e_min + x * (e0 - e_min));
+        assert!((g / (2.0 * x) - 1.0).abs() < 1e-3, "{g}");
+        let samples: Vec<f64> = (0..=100)
+            .map(|i| m.closure_factor(e_min + i as f64 * 0.01 * (e0 - e_min)))
+            .collect();
+        assert!(samples.windows(2).all(|w| w[1] >= w[0]));
+        assert_eq!(m.closure_factor(e_min - 0.05), CLOSURE_FACTOR_FLOOR);
+        let none = GpInterface::new(GpInterfaceParams {
+            void_ratio_bound: VoidRatioBound::None,
+            ..GpInterfaceParams::default()
+        })
+        .expect("valid");
+        assert_eq!(none.closure_factor(e_min - 0.05), 1.0);
     }
 }
