@@ -342,12 +342,18 @@ pub enum StiffnessBasis {
 pub enum VoidRatioBound {
     /// No bound: e follows (I6) wherever the closure takes it, below zero too.
     None,
-    /// e ≥ e_min by a smooth closure (default): with x = (e − e_min)/(e0 − e_min) the normal
+    /// e ≥ e_min by a smooth closure: with x = (e − e_min)/(e0 − e_min) the normal
     /// compliance 1/D_n (I4) is multiplied by g(x) = 1 − (1 − x)² (g = 1 for e ≥ e0, g ≈ 2x
     /// near e_min) and the contractive normal component of the flow (I14) by g², so σ_n grows
     /// like a power of 1/x and the closure stays below (e0 − e_min)/(1 + e0)·t.
-    #[default]
     Smooth,
+    /// e ≥ e_min by a hyperbolic closure law of Bandis's type (Bandis, Lumsden and Barton
+    /// 1983: σ_n = K·δ/(1 − δ/δ_max)): the normal compliance 1/D_n (I4) is multiplied by
+    /// g(x) = x² (g = 1 for e ≥ e0) and the contractive normal component of the flow (I14) by
+    /// g², so the normal stiffness grows like 1/x², σ_n like 1/x, and the closure reaches its
+    /// limit (e0 − e_min)/(1 + e0)·t only as σ_n → ∞. Default.
+    #[default]
+    Bandis,
 }
 
 /// Where the loading criterion is read after a reversal at a substep's start (spec (I18),
@@ -476,7 +482,7 @@ fn default_e0() -> f64 {
     0.25
 }
 fn default_normal_basis() -> StiffnessBasis {
-    StiffnessBasis::Strain
+    StiffnessBasis::Displacement
 }
 fn default_e_min() -> f64 {
     0.15
@@ -551,7 +557,7 @@ impl GpInterfaceParams {
         require_non_negative("b", self.b)?;
         require_positive("t", self.t)?;
         require_range("e0", self.e0, 0.01, 3.0)?;
-        if self.void_ratio_bound == VoidRatioBound::Smooth {
+        if self.void_ratio_bound != VoidRatioBound::None {
             require_range("e_min", self.e_min, 0.0, 0.99 * self.e0)?;
         }
         require_positive("sigma_min", self.sigma_min)?;
@@ -743,7 +749,7 @@ impl GpInterface {
     fn check_void_ratio_bound(&self, st: &GpInterfaceState, d_eps_n: f64) -> Result<(), MaterialError> {
         let p = &self.params;
         let e_end = st.void_ratio - (1.0 + p.e0) * d_eps_n;
-        if p.void_ratio_bound == VoidRatioBound::Smooth && e_end < p.e_min {
+        if p.void_ratio_bound != VoidRatioBound::None && e_end < p.e_min {
             return Err(MaterialError::new(format!(
                 "GP interface: closure beyond the void-ratio bound (e would be {e_end:.5} < e_min = {})",
                 p.e_min

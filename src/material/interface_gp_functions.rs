@@ -280,6 +280,10 @@ impl GpInterface {
                 let x = ((void_ratio - p.e_min) / (p.e0 - p.e_min)).clamp(0.0, 1.0);
                 (1.0 - (1.0 - x) * (1.0 - x)).max(CLOSURE_FACTOR_FLOOR)
             }
+            VoidRatioBound::Bandis => {
+                let x = ((void_ratio - p.e_min) / (p.e0 - p.e_min)).clamp(0.0, 1.0);
+                (x * x).max(CLOSURE_FACTOR_FLOOR)
+            }
         }
     }
 
@@ -680,7 +684,11 @@ mod tests {
     #[test]
     fn closure_factor_is_one_above_e0_and_linear_near_e_min() {
         use crate::material::interface_gp::GpInterfaceParams;
-        let m = GpInterface::new(GpInterfaceParams::default()).expect("valid");
+        let m = GpInterface::new(GpInterfaceParams {
+            void_ratio_bound: VoidRatioBound::Smooth,
+            ..GpInterfaceParams::default()
+        })
+        .expect("valid");
         let (e0, e_min) = (m.params.e0, m.params.e_min);
         assert_eq!(m.closure_factor(e0), 1.0);
         assert_eq!(m.closure_factor(e0 + 0.1), 1.0);
@@ -703,5 +711,20 @@ mod tests {
         })
         .expect("valid");
         assert_eq!(none.closure_factor(e_min - 0.05), 1.0);
+    }
+
+    #[test]
+    fn bandis_closure_factor_is_quadratic_below_e0() {
+        use crate::material::interface_gp::GpInterfaceParams;
+        let m = GpInterface::new(GpInterfaceParams::default()).expect("valid");
+        assert_eq!(m.params.void_ratio_bound, VoidRatioBound::Bandis);
+        let (e0, e_min) = (m.params.e0, m.params.e_min);
+        assert_eq!(m.closure_factor(e0), 1.0);
+        assert_eq!(m.closure_factor(e0 + 0.1), 1.0);
+        for x in [0.9, 0.5, 0.1, 1e-2] {
+            let g = m.closure_factor(e_min + x * (e0 - e_min));
+            assert!((g / (x * x) - 1.0).abs() < 1e-9, "x = {x}: g = {g}");
+        }
+        assert_eq!(m.closure_factor(e_min - 0.05), CLOSURE_FACTOR_FLOOR);
     }
 }

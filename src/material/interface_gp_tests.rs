@@ -30,9 +30,21 @@ fn model(basis: StiffnessBasis) -> GpInterface {
     GpInterface::new(legacy_params(basis)).expect("seed parameters are valid")
 }
 
-/// The model with the default parameters (seed Table 2 and the defaults of the options).
-fn default_model() -> GpInterface {
-    GpInterface::new(GpInterfaceParams::default()).expect("seed parameters are valid")
+/// The strain reading of the normal response (issue 19, option): `normal_basis: strain`,
+/// `void_ratio_bound: smooth`, `reversal_branch: trial`, the other keys at their defaults
+/// (seed Table 2).
+fn strain_params() -> GpInterfaceParams {
+    GpInterfaceParams {
+        normal_basis: StiffnessBasis::Strain,
+        void_ratio_bound: VoidRatioBound::Smooth,
+        reversal_branch: ReversalBranch::Trial,
+        ..GpInterfaceParams::default()
+    }
+}
+
+/// The model of [`strain_params`].
+fn strain_model() -> GpInterface {
+    GpInterface::new(strain_params()).expect("seed parameters are valid")
 }
 
 fn model_with_reading(basis: StiffnessBasis, reading: ElasticVoidRatio) -> GpInterface {
@@ -51,7 +63,7 @@ fn closure_bound(m: &GpInterface) -> f64 {
 
 /// Panics when a model with the smooth bound holds a state below e_min.
 fn check_void_ratio(m: &GpInterface, st: &GpInterfaceState) {
-    if m.params.void_ratio_bound == VoidRatioBound::Smooth {
+    if m.params.void_ratio_bound != VoidRatioBound::None {
         assert!(
             st.void_ratio >= m.params.e_min,
             "e = {} below e_min = {}",
@@ -198,7 +210,7 @@ fn tau_at(rec: &[(f64, f64, f64)], u: f64) -> f64 {
 
 #[test]
 fn default_parameters_are_seed_table_2_in_si() {
-    let p = GpInterfaceParams::default();
+    let p = strain_params();
     assert_eq!((p.ds0, p.dn0, p.h0), (1.0e6, 1.5e6, 8.5e6));
     assert_eq!((p.t, p.e0, p.mc, p.fh), (0.1, 0.25, 0.88, 2.0));
     // a, b in Pa^±0.5: Δe_c is unit-free, so a(kPa)·√1000 and b(kPa)/√1000.
@@ -212,7 +224,7 @@ fn default_parameters_are_seed_table_2_in_si() {
 #[test]
 fn invalid_parameters_name_the_field() {
     let bad = |f: fn(&mut GpInterfaceParams)| {
-        let mut p = GpInterfaceParams::default();
+        let mut p = strain_params();
         f(&mut p);
         p.validate().expect_err("must fail").field
     };
@@ -227,7 +239,7 @@ fn invalid_parameters_name_the_field() {
     let free = GpInterfaceParams {
         void_ratio_bound: VoidRatioBound::None,
         e_min: 1.0,
-        ..GpInterfaceParams::default()
+        ..strain_params()
     };
     free.validate().expect("e_min unused without the bound");
     assert_eq!(
@@ -236,14 +248,14 @@ fn invalid_parameters_name_the_field() {
     );
     assert!(GpInterface::new(GpInterfaceParams {
         mc: 0.0,
-        ..GpInterfaceParams::default()
+        ..strain_params()
     })
     .is_err());
 }
 
 #[test]
 fn parameters_serde_keys_defaults_and_unknown_fields() {
-    let p = GpInterfaceParams::default();
+    let p = strain_params();
     let json = serde_json::to_string(&p).expect("serialize");
     for key in [
         "\"Ds0\"",
@@ -270,8 +282,8 @@ fn parameters_serde_keys_defaults_and_unknown_fields() {
     assert_eq!(
         (q.normal_basis, q.void_ratio_bound, q.reversal_branch),
         (
-            StiffnessBasis::Strain,
-            VoidRatioBound::Smooth,
+            StiffnessBasis::Displacement,
+            VoidRatioBound::Bandis,
             ReversalBranch::Trial
         )
     );
@@ -303,7 +315,7 @@ fn elastic_moduli_eq_5_and_the_two_readings() {
         "legacy: both bases per displacement"
     );
     // Default: shear per displacement, normal per strain, D_n divided by the closure factor.
-    let m = default_model();
+    let m = strain_model();
     let (ds3, dn3) = m.elastic_moduli(100.0 * KPA, 0.0, 0.25);
     assert!((ds3 - ds2).abs() < 1e-9 * ds2 && (dn3 - dn).abs() < 1e-9 * dn);
     let e = 0.16;
@@ -317,7 +329,7 @@ fn elastic_moduli_eq_5_and_the_two_readings() {
 
 #[test]
 fn traction_sign_and_tangent_scaling() {
-    let m = default_model();
+    let m = strain_model();
     let st = m.init_state(200.0 * KPA).expect("init");
     let t = GpInterface::traction(&st);
     assert_eq!(t, Local3::new(0.0, 0.0, -200.0 * KPA));
@@ -444,11 +456,11 @@ fn opening_from_100_kpa(m: &GpInterface) -> f64 {
 }
 
 #[test]
-fn if1_closure_at_400_and_800_kpa_is_bounded_with_the_default() {
+fn if1_closure_at_400_and_800_kpa_is_bounded_with_the_strain_reading() {
     // Issue 19, acceptance 1. Measured (mm at 400 / 800 kPa, e at the end): default 5.292 /
     // 6.061, e = 0.1742; the same normal reading without the bound 6.667 / 8.668, e = 0.1417
     // (below e_min); the legacy `displacement` reading 59.2 / 71.6, e = −0.645.
-    let m = default_model();
+    let m = strain_model();
     assert_eq!(
         (m.params.normal_basis, m.params.void_ratio_bound),
         (StiffnessBasis::Strain, VoidRatioBound::Smooth)
@@ -456,7 +468,7 @@ fn if1_closure_at_400_and_800_kpa_is_bounded_with_the_default() {
     let (v400, v800, e800) = if1_closures(&m);
     let unbounded = GpInterface::new(GpInterfaceParams {
         void_ratio_bound: VoidRatioBound::None,
-        ..GpInterfaceParams::default()
+        ..strain_params()
     })
     .expect("valid");
     let (u400, u800, ue800) = if1_closures(&unbounded);
@@ -495,7 +507,7 @@ fn strain_controlled_closure_toward_the_bound_needs_a_diverging_stress() {
     // power of 1/x as the closure approaches (e0 − e_min)/(1 + e0)·t = 8 mm, and stays finite
     // with a finite tangent. Measured σ_n = 1.07 / 7.60 / 51.6 / 360 / 37 094 MPa at 4 / 6 / 7
     // / 7.5 / 7.9 mm.
-    let m = default_model();
+    let m = strain_model();
     let bound = closure_bound(&m);
     let mut st = m.init_state(100.0 * KPA).expect("init");
     let mut rows = Vec::new();
@@ -679,7 +691,7 @@ fn report_shear_displacement_at_50_and_95_percent_of_peak() {
         );
     }
     // Cyclic timing: 200 cycles of ±2 mm at 200 kPa through the Newton driver.
-    let m = default_model();
+    let m = strain_model();
     let mut d = Driver::new(&m, 200.0 * KPA, 0.0);
     let start = Instant::now();
     for _ in 0..200 {
@@ -718,7 +730,7 @@ fn default_keeps_the_shear_curves_of_the_crosscheck() {
     // 14.54 / 14.47 / 14.38 mm, u95 53.47 / 54.40 / 55.17 mm against 53.78 / 54.65 / 55.38 mm,
     // peaks equal to 0.1 kPa; the normal displacement at 200 mm is −2.24 / −0.84 / +0.57 mm
     // (dilation, dilation, contraction; legacy −2.23 / −0.83 / +0.59 mm).
-    let new = default_model();
+    let new = strain_model();
     let old = model(StiffnessBasis::Displacement);
     for sn in [100.0, 200.0, 400.0] {
         let (tp, u50, u95, v) = crosscheck_row(&new, sn * KPA);
@@ -773,11 +785,11 @@ fn cyclic_cnl(
 #[test]
 fn if3_cnl_cyclic_contraction_accumulates() {
     let with = |f: fn(&mut GpInterfaceParams)| {
-        let mut p = GpInterfaceParams::default();
+        let mut p = strain_params();
         f(&mut p);
         GpInterface::new(p).expect("valid")
     };
-    let m = default_model();
+    let m = strain_model();
     let no_breakage = with(|p| p.a = 1e12);
     let memory = with(|p| p.fh_mode = FhMode::Memory);
     let literal = model(StiffnessBasis::Strain);
@@ -854,12 +866,12 @@ fn if3_cyclic_contraction_decays_with_the_default_elastic_reading() {
 }
 
 #[test]
-fn if3_cyclic_contraction_decays_within_the_bound_with_the_default() {
+fn if3_cyclic_contraction_decays_within_the_bound_with_the_strain_reading() {
     // Issue 19: with the void-ratio bound the per-cycle closure of IF-3 (±5 mm, 10 cycles)
     // falls every cycle and much faster than with the legacy reading (c10/c2 = 0.87). Measured
     // per-cycle 0.810 → 0.258 mm at 200 kPa (c10/c2 = 0.32, v10 = 5.37 mm) and 0.870 → 0.249
     // mm at 400 kPa (0.29, 5.56 mm).
-    let m = default_model();
+    let m = strain_model();
     for sn in [200.0, 400.0] {
         let (v, st) = cyclic_cnl(&m, sn * KPA, 5.0 * MM, 10, 10);
         let inc = per_cycle_mm(&v);
@@ -969,7 +981,7 @@ fn g7_which_ingredient_produces_cyclic_decay() {
 #[test]
 fn if3_cyclic_breakage_is_c_times_faster_per_unit_work() {
     // (I21): χ = c on cyclic branches. Compare dΔe_c/dW_p over a virgin and a cyclic stage.
-    let m = default_model();
+    let m = strain_model();
     let mut d = Driver::new(&m, 200.0 * KPA, 0.0);
     for _ in 0..20 {
         d.step(0.1 * MM, 0.0).expect("virgin");
@@ -999,7 +1011,7 @@ fn if3_cyclic_breakage_is_c_times_faster_per_unit_work() {
 
 #[test]
 fn if4_cns_monotonic_and_cyclic() {
-    let m = default_model();
+    let m = strain_model();
     for k_kpa_mm in [500.0, 2000.0] {
         let k = k_kpa_mm * KPA / MM;
         let mut d = Driver::new(&m, 200.0 * KPA, k);
@@ -1061,7 +1073,7 @@ fn if4_cns_monotonic_and_cyclic() {
 
 #[test]
 fn if5a_orthogonal_shear_after_s_shear() {
-    let m = default_model();
+    let m = strain_model();
     let mut d = Driver::new(&m, 200.0 * KPA, 0.0);
     for _ in 0..50 {
         d.step(0.1 * MM, 0.0).expect("s shear");
@@ -1145,7 +1157,7 @@ fn if5b_circular_path_is_bounded_and_follows_the_motion() {
     for reading in [ElasticVoidRatio::Initial, ElasticVoidRatio::Current] {
         for factor in [0.9, 0.95, 1.0, 1.05, 1.1] {
             let m = GpInterface::new(GpInterfaceParams {
-                ds0: factor * GpInterfaceParams::default().ds0,
+                ds0: factor * strain_params().ds0,
                 elastic_void_ratio: reading,
                 ..legacy_params(StiffnessBasis::Displacement)
             })
@@ -1161,7 +1173,7 @@ fn if5b_circular_path_is_bounded_and_follows_the_motion() {
 
 #[test]
 fn if5c_reversal_in_s_with_axial_shear() {
-    let m = default_model();
+    let m = strain_model();
     let mut d = Driver::new(&m, 200.0 * KPA, 0.0);
     for _ in 0..40 {
         d.step(0.1 * MM, 0.05 * MM).expect("diagonal");
@@ -1189,7 +1201,7 @@ fn if5c_reversal_in_s_with_axial_shear() {
 
 #[test]
 fn if6_open_shear_reclose_keeps_memory() {
-    let m = default_model();
+    let m = strain_model();
     let mut d = Driver::new(&m, 100.0 * KPA, 0.0);
     for _ in 0..30 {
         d.step(0.1 * MM, 0.0).expect("shear");
@@ -1269,7 +1281,7 @@ fn if7_result_is_independent_of_stol() {
     let mut taus = Vec::new();
     let mut reversed = Vec::new();
     for stol in [1e-3, 1e-4, 1e-5] {
-        let mut p = GpInterfaceParams::default();
+        let mut p = strain_params();
         p.integration.stol = stol;
         let m = GpInterface::new(p).expect("valid");
         // One big strain-controlled step (δ_n fixed) so the substepping decides the accuracy.
@@ -1305,7 +1317,7 @@ fn if7_result_is_independent_of_stol() {
 
 #[test]
 fn if7_hard_cases_zero_stress_tension_tiny_reversals_huge_increments() {
-    let m = default_model();
+    let m = strain_model();
     // Zero and tensile initial normal stress.
     let z = m.init_state(0.0).expect("zero stress");
     assert_eq!(z.stress[2], m.params.sigma_min);
@@ -1433,13 +1445,13 @@ fn if7_ten_thousand_cycles_without_nan() {
 }
 
 #[test]
-fn ten_thousand_cycles_contraction_is_bounded_with_the_default() {
+fn ten_thousand_cycles_contraction_is_bounded_with_the_strain_reading() {
     // Issue 19: the closure of the default stays below (e0 − e_min)/(1 + e0)·t = 8 mm and
     // e ≥ e_min after every update (checked inside). Measured: v = 0.034 / 0.615 / 4.809 /
     // 7.735 / 7.976 mm after 1 / 10 / 100 / 1000 / 10 000 cycles; the largest cycle adds
     // 0.065 mm, cycle 100 0.027 mm, cycle 1000 2.9e-4 mm, cycle 10 000 2.4e-6 mm; lowest e
     // 0.15030.
-    let m = default_model();
+    let m = strain_model();
     let rec = ten_thousand_cycles(&m);
     let bound = closure_bound(&m);
     let per_cycle: Vec<f64> = std::iter::once(rec.v_end[0])
@@ -1539,7 +1551,16 @@ fn try_run_path(
 /// substep moves into loading, and both paths are followed with few substeps.
 #[test]
 fn neutral_loading_path_does_not_stall() {
-    let m = default_model();
+    for m in [
+        GpInterface::new(GpInterfaceParams::default()).expect("the default"),
+        strain_model(),
+    ] {
+        neutral_loading_paths_are_followed(&m);
+    }
+}
+
+/// Follows both neutral-loading paths with `m` in few substeps.
+fn neutral_loading_paths_are_followed(m: &GpInterface) {
     assert_eq!(m.params.reversal_branch, ReversalBranch::Trial);
     for (sn, path) in neutral_loading_paths() {
         let mut st = m.init_state(sn).expect("initial state");
@@ -1604,10 +1625,7 @@ fn start_reading_stalls_on_the_neutral_loading_paths() {
         })
         .expect("valid parameters")
     };
-    for base in [
-        legacy_params(StiffnessBasis::Displacement),
-        GpInterfaceParams::default(),
-    ] {
+    for base in [legacy_params(StiffnessBasis::Displacement), strain_params()] {
         let start = with(base.clone(), ReversalBranch::Start);
         let trial = with(base, ReversalBranch::Trial);
         for (sn, path) in neutral_loading_paths() {
@@ -1673,7 +1691,7 @@ proptest! {
 
     #[test]
     fn prop_update_is_pure_and_state_round_trips(path in path_strategy(), sn in 20e3..800e3_f64) {
-        let m = default_model();
+        let m = strain_model();
         // every path is followed with the default `reversal_branch = trial`
         let st = try_run_path(&m, sn, &path).expect("the path is followed");
         let d = Local3::new(1e-4, -3e-5, 1e-6);
@@ -1689,7 +1707,7 @@ proptest! {
 
     #[test]
     fn prop_invariance_under_rotation_of_shear_axes(path in path_strategy(), th in 0.0..std::f64::consts::TAU, sn in 50e3..600e3_f64) {
-        let m = default_model();
+        let m = strain_model();
         let (c, s) = (th.cos(), th.sin());
         let st = try_run_path(&m, sn, &path).expect("the path is followed");
         let rpath: Vec<(f64, f64, f64)> = path.iter().map(|&(a, b, n)| (c * a - s * b, s * a + c * b, n)).collect();
@@ -1712,7 +1730,7 @@ proptest! {
         let m = match which {
             0 => model(StiffnessBasis::Displacement),
             1 => model(StiffnessBasis::Strain),
-            _ => default_model(),
+            _ => strain_model(),
         };
         // A virgin state sheared along a direction, then a tiny loading increment along it
         // (one substep: the update is a smooth function of the increment).
@@ -1748,7 +1766,7 @@ proptest! {
         // followed by a change of σ_n by a factor e^±1 (within 20 kPa … 3 MPa) in steps of at
         // most 5 % of ln σ_n; e ≥ e_min after every step (checked by the driver) and the
         // closure within the bound.
-        let m = default_model();
+        let m = strain_model();
         let run = |m: &GpInterface| -> Result<Vec<GpInterfaceState>, MaterialError> {
             let mut d = Driver::new(m, sn0, 0.0);
             let mut states = Vec::new();
@@ -1772,4 +1790,63 @@ proptest! {
             prop_assert!(st.v_mat < closure_bound(&m));
         }
     }
+}
+
+#[test]
+fn if1_closure_at_400_and_800_kpa_is_bounded_with_the_default() {
+    // Issue 19, acceptance 1, the default reading (`normal_basis: displacement`,
+    // `void_ratio_bound: bandis`): measured 6.927 / 7.076 mm at 400 / 800 kPa, e = 0.1616 at the
+    // end, against the bound 8 mm; the legacy reading (the same without the bound) 59.2 / 71.6
+    // mm.
+    let m = GpInterface::new(GpInterfaceParams::default()).expect("valid");
+    assert_eq!(
+        (m.params.normal_basis, m.params.void_ratio_bound),
+        (StiffnessBasis::Displacement, VoidRatioBound::Bandis)
+    );
+    let (v400, v800, e800) = if1_closures(&m);
+    let open = opening_from_100_kpa(&m);
+    println!(
+        "IF-1 default: closure {:.3} / {:.3} mm at 400 / 800 kPa, e = {e800:.4}; opens from 100 kPa after {:.3} mm; bound {:.3} mm",
+        v400 / MM,
+        v800 / MM,
+        open / MM,
+        closure_bound(&m) / MM
+    );
+    assert!(v400 > 6.7 * MM && v400 < 7.2 * MM, "v(400 kPa) = {v400}");
+    assert!(v800 > v400 && v800 < 7.3 * MM, "v(800 kPa) = {v800}");
+    assert!(v800 < closure_bound(&m) && e800 > m.params.e_min);
+}
+
+#[test]
+fn ten_thousand_cycles_contraction_is_bounded_with_the_default() {
+    // Issue 19: the default's closure stays below the bound and e ≥ e_min after every update
+    // (checked inside [`ten_thousand_cycles`]).
+    let m = GpInterface::new(GpInterfaceParams::default()).expect("valid");
+    let rec = ten_thousand_cycles(&m);
+    let bound = closure_bound(&m);
+    let per_cycle: Vec<f64> = std::iter::once(rec.v_end[0])
+        .chain(rec.v_end.windows(2).map(|w| w[1] - w[0]))
+        .collect();
+    let largest = per_cycle.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
+    let at = |n: usize| rec.v_end[n - 1] / MM;
+    println!(
+        "default, 10 000 cycles: v = {:.3} / {:.3} / {:.3} / {:.3} / {:.3} mm after 1 / 10 / 100 / 1000 / 10 000 cycles; \
+         largest per-cycle {:.4} mm, cycle 10 000 {:.2e} mm; lowest e {:.5}; bound {:.3} mm",
+        at(1),
+        at(10),
+        at(100),
+        at(1000),
+        at(10_000),
+        largest / MM,
+        per_cycle[9_999] / MM,
+        rec.e_lowest,
+        bound / MM
+    );
+    assert!(rec.v_end[9_999] < bound, "within the bound {bound} m");
+    assert!(rec.e_lowest >= m.params.e_min);
+    assert!(
+        per_cycle[9_999].abs() < 1e-3 * MM,
+        "cycle 10 000 adds {} m",
+        per_cycle[9_999]
+    );
 }
