@@ -100,7 +100,8 @@
 //!
 //! Named options of the inferred choices: `lode`, `hden_on_hu`, `softening_guard`, `xi_rule`
 //! (rockfill); `peak_form`, `fh_mode`, `stiffness_basis`, `elastic_void_ratio`,
-//! `reversal_branch` (GP interface). With the rockfill GP model in a staged dam, give
+//! `normal_basis`, `void_ratio_bound` with `e_min`, `reversal_branch` (GP interface; their defaults
+//! and the measurements behind them: [`interface_gp`](crate::material::interface_gp)). With the rockfill GP model in a staged dam, give
 //! `tangent: numerical`: the continuum tangent of a large strain step is far from the
 //! consistent one, and Newton then creeps ([`crate::performance`]). `cfrd point` drives one
 //! material point along a laboratory path ([command line](#command-line)).

@@ -168,21 +168,26 @@
 //! ### Coarse mesh: the three interface models
 //!
 //! Source: `scripts/make_seed_static_figures.sh` at commit 51547bd (`seed_static_slab.png`,
-//! each run's `fig08_slab_stress.csv`); 1 and 2 ranks give the same values.
+//! each run's `fig08_slab_stress.csv`); 1 and 2 ranks give the same values. The GP column is
+//! that of the bounded default reading of issue 19 (commit e5b3cbc, the golden
+//! `tests/goldens/seed_coarse_gp_interface.json`, 1 and 2 ranks alike); the reading before it
+//! (unbounded normal response) gave −3.31 / −1.12 / −0.6, −2.20 / −1.29 / 0.3, −6.93 / −5.44 /
+//! 17.0, −3.60 / −5.26 / 16.4 and −1.65 / −3.34 / 10.6 in the rows below.
 //!
 //! ![slab stresses and deflection by interface model, coarse mesh][coarse]
 //!
 //! | elevation | state | σ_s hyperbolic / MC / GP | σ_a hyperbolic / MC / GP | deflection hyperbolic / MC / GP |
 //! |---|---|---|---|---|
-//! | 2695 m | end of construction | −2.81 / −3.05 / −3.31 | −0.97 / −1.04 / −1.12 | −0.3 / −0.3 / −0.6 |
-//! | 2723 m | end of construction | −1.68 / −1.73 / −2.20 | −1.13 / −1.20 / −1.29 | −0.1 / −0.1 / 0.3 |
-//! | 2723 m | after impoundment | −6.41 / −6.19 / −6.93 | −5.31 / −5.24 / −5.44 | 11.0 / 11.0 / 17.0 |
-//! | 2769 m | after impoundment | −3.63 / −3.53 / −3.60 | −5.25 / −4.95 / −5.26 | 10.3 / 10.3 / 16.4 |
-//! | 2817 m | after impoundment | −1.82 / −1.70 / −1.65 | −3.46 / −3.16 / −3.34 | 5.6 / 5.6 / 10.6 |
+//! | 2695 m | end of construction | −2.81 / −3.05 / −3.12 | −0.97 / −1.04 / −1.07 | −0.3 / −0.3 / −0.4 |
+//! | 2723 m | end of construction | −1.68 / −1.73 / −2.01 | −1.13 / −1.20 / −1.26 | −0.1 / −0.1 / −0.1 |
+//! | 2723 m | after impoundment | −6.41 / −6.19 / −6.40 | −5.31 / −5.24 / −5.38 | 11.0 / 11.0 / 11.1 |
+//! | 2769 m | after impoundment | −3.63 / −3.53 / −3.34 | −5.25 / −4.95 / −5.02 | 10.3 / 10.3 / 10.4 |
+//! | 2817 m | after impoundment | −1.82 / −1.70 / −1.66 | −3.46 / −3.16 / −3.11 | 5.6 / 5.6 / 5.8 |
 //!
 //! The seed's static findings on this mesh (largest difference between two models over the
 //! section, as a fraction of the largest stress of that state, from `fig08_slab_stress.csv` of
-//! the runs of commit efe2165, which differ from the table above by at most 0.01 MPa):
+//! the runs of commit efe2165, which differ from the table above by at most 0.01 MPa; these
+//! bullets are those of the unbounded GP reading, the bounded one is discussed after them):
 //!
 //! * End of construction, "the three models give the same slab stresses": hyperbolic and
 //!   Mohr–Coulomb agree (σ_s 7 %, σ_a 6 %); the GP interface gives more compression (σ_s 16 %,
@@ -196,24 +201,40 @@
 //! * "Its slab deflection is slightly larger overall": holds, and by more than slightly
 //!   (6.6–18.2 cm against 3.1–11.8 cm).
 //!
+//! With the bounded GP reading (the table's GP column) the GP interface no longer stands
+//! apart: its slab is within 0.3 MPa and 0.2 cm of the hyperbolic one in every row after
+//! impoundment (deflection 3.3–11.9 cm against 3.1–11.8 cm: "slightly larger" now holds as
+//! the seed says it), and its end-of-construction compression is still the largest of the
+//! three (−3.12 against −2.81 / −3.05 MPa at 2695 m). Its axial compression is larger than the
+//! hyperbolic one below 2760 m (−5.38 against −5.31 at 2723 m) and smaller above it (−5.02
+//! against −5.25 at 2769 m): the seed's pattern inverted.
+//!
 //! ### Medium mesh: the three interface models
 //!
 //! Source: `MEDIUM=1 scripts/make_seed_static_figures.sh` at commit 51547bd
-//! (`seed_medium_slab.png`, the runs' `fig08_slab_stress.csv`), 2 ranks.
+//! (`seed_medium_slab.png`, the runs' `fig08_slab_stress.csv`), 2 ranks. The GP column is the
+//! bounded default reading of issue 19: `seed_medium_gp_interface.yaml` with its keys given
+//! explicitly (`normal_basis: displacement, void_ratio_bound: bandis, reversal_branch:
+//! trial`, the defaults from commit e5b3cbc on), 2 ranks, 1278 s, 1446 Newton iterations, 54
+//! cut-backs, 826 MB peak resident memory per rank (`/usr/bin/time -v`; the machine compiled
+//! at the same time). The reading before it gave −3.06 / −1.06 / −0.3, −2.30 / −1.25 / −0.2,
+//! −8.41 / −5.11 / 16.8, −8.72 / −6.47 / 18.9, −3.94 / −5.75 / 17.0 and −1.53 / −3.18 / 10.5
+//! in the rows below.
 //!
 //! ![slab stresses and deflection by interface model, medium mesh][medium]
 //!
 //! | elevation | state | σ_s hyperbolic / MC / GP | σ_a hyperbolic / MC / GP | deflection hyperbolic / MC / GP |
 //! |---|---|---|---|---|
-//! | 2697 m | end of construction | −2.65 / −2.90 / −3.06 | −0.94 / −1.02 / −1.06 | −0.2 / −0.2 / −0.3 |
-//! | 2722 m | end of construction | −1.97 / −2.13 / −2.30 | −1.11 / −1.20 / −1.25 | −0.3 / −0.3 / −0.2 |
-//! | 2703 m | after impoundment | −8.11 / −7.93 / −8.41 | −5.60 / −5.60 / −5.11 | 10.8 / 10.8 / 16.8 |
-//! | 2722 m | after impoundment | −8.41 / −8.03 / −8.72 | −6.51 / −6.37 / −6.47 | 13.3 / 13.3 / 18.9 |
-//! | 2761 m | after impoundment | −3.93 / −3.93 / −3.94 | −5.70 / −5.34 / −5.75 | 11.2 / 11.2 / 17.0 |
-//! | 2814 m | after impoundment | −1.56 / −1.48 / −1.53 | −3.28 / −3.00 / −3.18 | 5.2 / 5.2 / 10.5 |
+//! | 2697 m | end of construction | −2.65 / −2.90 / −2.89 | −0.94 / −1.02 / −1.04 | −0.2 / −0.2 / −0.2 |
+//! | 2722 m | end of construction | −1.97 / −2.13 / −2.20 | −1.11 / −1.20 / −1.24 | −0.3 / −0.3 / −0.3 |
+//! | 2703 m | after impoundment | −8.11 / −7.93 / −8.07 | −5.60 / −5.60 / −5.60 | 10.8 / 10.8 / 10.8 |
+//! | 2722 m | after impoundment | −8.41 / −8.03 / −8.31 | −6.51 / −6.37 / −6.45 | 13.3 / 13.3 / 13.3 |
+//! | 2761 m | after impoundment | −3.93 / −3.93 / −3.68 | −5.70 / −5.34 / −5.46 | 11.2 / 11.2 / 11.3 |
+//! | 2814 m | after impoundment | −1.56 / −1.48 / −1.52 | −3.28 / −3.00 / −2.99 | 5.2 / 5.2 / 5.5 |
 //!
 //! The seed's findings on the medium mesh (as above; from the runs of commit 841f574, which
-//! differ from the table above by at most 0.01 MPa):
+//! differ from the table above by at most 0.01 MPa; the unbounded GP reading, the bounded one
+//! after these bullets):
 //!
 //! * End of construction: the models agree more closely than on the coarse mesh: σ_s
 //!   hyperbolic–MC 8 %, GP–hyperbolic 13 %, GP–MC 5 %; σ_a 7 %, 11 %, 4 %. The GP interface is
@@ -228,6 +249,26 @@
 //! * Deflection: hyperbolic and Mohr–Coulomb the same (1.8–13.7 cm), the GP interface larger
 //!   (1.4–20.0 cm, the largest 20.0 against 13.7 cm at 2734–2740 m): "slightly larger" holds in
 //!   sign, not in size, as on the coarse mesh.
+//!
+//! With the bounded GP reading the medium GP slab is within 0.25 MPa and 0.3 cm of the
+//! hyperbolic one after impoundment: the axial compression equal low on the slab (−5.60 at
+//! 2703 m) and smaller above (−5.46 against −5.70 at 2761 m), the deflection 1.7–13.9 cm
+//! against 1.8–13.7 cm. So with this reading the seed's "GP smaller below 2760 m, larger
+//! above" is not reproduced on either mesh, and "slightly larger deflection" holds as stated.
+//!
+//! #### The interface itself (seed Fig. 11), bounded GP reading
+//!
+//! `fig11_interface.csv` after impoundment, central section (the coarse run of the golden and
+//! the medium run above): the normal jump is a closure of 6.6–7.4 mm (coarse) and 5.5–7.4 mm
+//! (medium) at every elevation, 4.1–4.7 mm at the rows just above a slab stage's foot, with no
+//! opening anywhere and no dilatancy; the shear jump along the slope is largest at the foot of
+//! slab stage I (−38 mm coarse at 2723 m, −43 mm medium at 2734 m). The closure is bounded
+//! (the Bandis limit is 8.0 mm) but nearly uniform: it is carried by the bound, mostly 87–93 %
+//! of the limit (69 % at the crest row), even near the crest where σ_n is 4–90 kPa, because the displacement-basis
+//! normal modulus is soft at low stress. The seed's Fig. 11 (dilatancy under slab stage I
+//! during construction, contraction in impoundment, slight dilatancy near the crest) is not
+//! reproduced in kind; its size (millimetres, no opening) is. The reading before issue 19
+//! closed 60–100 mm.
 //!
 //! ### Fine mesh against medium: hyperbolic interface
 //!
@@ -264,44 +305,44 @@
 //!
 //! ## Known defects
 //!
-//! * On two random shear paths of the GP interface whose substeps all start just on the
-//!   unloading side, the default reversal rule (`reversal_branch: start`, spec (I18) read at the
-//!   substep's start, models §2.9) moves the reversal point along at every substep and the
-//!   substepping runs out of attempts (NMAX); the paths are kept as an ignored regression test.
-//!   `reversal_branch: trial` reads (I18) at the substep's trial point and follows both paths,
-//!   but changes the GP-interface results, so the seed scenes keep `start` until their figures
-//!   are redone ([`crate::material::interface_gp`]).
-//! * **The bounded GP-interface reading does not yet carry the coarse seed dam** (issue 19).
-//!   Branch `gpi2` (commit 930019d, options and material-point measurements in its
-//!   `material::interface_gp`) bounds the material point's closure with `normal_basis:
-//!   strain` and `void_ratio_bound: smooth` (5.3 / 6.1 mm at 400 / 800 kPa, 8.0 mm after
-//!   10,000 cycles, e ≥ 0.150), but
-//!   `mpirun -n 2 cfrd run` of `seed_coarse_gp_interface.yaml` with it stalls: after a
-//!   converged load step the next step's Newton iterations leave the residual unchanged to
-//!   four digits from the first one (line search failed), the residual's floor falls with the
-//!   load increment to about newton_tol (1.000e-5) but not below, and interface elements run
-//!   out of substeps (NMAX) at some trial points. Measured variants (2 ranks, stopped by
-//!   mpirun's time limit; stage and load factor of the stall):
+//! * **The GP interface's bounded reading is carried by its bound** (issue 19). The default
+//!   since commit e5b3cbc ([`crate::material::interface_gp`]: `normal_basis: displacement`,
+//!   `void_ratio_bound: bandis`, `reversal_branch: trial`) keeps the closure of the 0.1 m
+//!   layer below (e0 − e_min)/(1 + e0)·t = 8 mm under any path (material point: 6.93 / 7.08 mm
+//!   at 400 / 800 kPa, 6.83 mm after 10,000 cycles of ±0.5 mm, e ≥ 0.1646; the reading before
+//!   closed 59 / 72 / 109 mm) and carries the coarse (33 s) and medium (21 min) seed dams, but
+//!   over the face the closure sits at 87–93 % of the bound (seed Fig. 11 above). e_min = 0.15
+//!   is an inferred value, so the closure's size is the bound's, not the seed's calibration.
+//!   The `strain` normal basis (`void_ratio_bound: smooth` or `bandis`), whose material-point
+//!   closure depends on σ_n as a calibration would (5.3 / 6.1 mm at 400 / 800 kPa), stalls the
+//!   coarse dam in slab stage III. Measured variants (coarse GP seed scene, 2 ranks; stage and
+//!   load factor of the stall):
 //!
 //!   | interface reading (other keys as in the scene) | outcome |
 //!   |---|---|
-//!   | `strain` + `smooth` + `reversal_branch: trial` (the branch's default) | slab_3, λ = 0.042, 51 cut-backs in 560 s |
+//!   | `displacement` + `bandis` + `trial` (the default) | runs: 33 s, 546 Newton iterations, 6 cut-backs |
+//!   | `displacement` + `bandis` + `start` | runs: 31.5 s, 557 / 5 |
+//!   | `strain` + `bandis` + `trial` | slab_3, λ = 0.040 (NMAX at interface elements; stopped at 300 s) |
+//!   | `strain` + `smooth` + `trial` | slab_3, λ = 0.042, 51 cut-backs in 560 s |
 //!   | the same with `reversal_branch: start` | slab_3, λ = 0.019 |
 //!   | the same with `start` and `integration_tol_ratio: 0.1` | slab_2, λ = 0.069 |
 //!   | `strain`, no bound, `trial` | slab_3, λ = 0.015 |
-//!   | `displacement` (main's normal reading) + `smooth` + `trial` | passes slab_3; impound_1 ends at λ = 0.179: closure at e_min (exit 3, 97 s) |
+//!   | `displacement` + `smooth` + `trial` | impound_1 ends at λ = 0.179: closure at e_min (exit 3, 97 s): the `smooth` bound's stiffness grows only like 1/x, so the soft displacement modulus drives e to e_min |
 //!   | `displacement`, no bound, `trial` | slab_2, λ = 0.040 |
-//!   | branch default + `tangent: numerical` | slab_2, λ = 0.069 |
-//!   | branch default + `integration_tol_ratio: 0.1` | slab_2, λ = 0.069 |
-//!   | both | slab_2, λ = 0.070 |
-//!   | both, and a linear joint (`kn_tens` = `kn_comp`) | slab_2, λ = 0.069 |
-//!   | main's reading (`displacement`, no bound, `start`) | runs (the seed figures) |
+//!   | `strain` + `smooth` + `tangent: numerical` and/or `integration_tol_ratio: 0.1`, or a linear joint | slab_2, λ ≈ 0.069 |
+//!   | the reading before issue 19 (`displacement`, no bound, `start`) | runs |
 //!
-//!   So neither the tangent, the integration tolerance nor the joints' kink removes the floor;
-//!   what every stalling variant shares is a GP-interface response that is not smooth in the
-//!   increment at that level, most likely the branch jumps of 0.1–0.3 kPa where τ crosses zero
-//!   after a reversal (measured at the material point). Main keeps its reading until a
-//!   continuous reversal rule lets the bounded one run.
+//!   In the stalls the residual stays unchanged to four digits after a converged step, its
+//!   floor falls with the load increment to about newton_tol and not below, and interface
+//!   points run out of substeps: most likely the GP interface's response jumps in the
+//!   increment where τ crosses zero after a reversal (0.1–0.3 kPa at the material point).
+//!   A reversal rule continuous in the increment is what the strain reading needs.
+//! * **The GP-interface quake** with the bounded default (`seed_coarse_gp_interface_quake.yaml`
+//!   with the default keys written out, 2 ranks): the statics run, then the quake cuts back at
+//!   t = 3.87 s with the relative residual at 1.0 and the largest out-of-balance force
+//!   (2.7·10⁸ N) in the lowest rockfill layers (fill_001/002 near el. 2709–2737 m), not at the
+//!   interface; the reading before issue 19 cut back at t ≈ 4.06 s. The ideal elasto-plastic
+//!   interface's quake, with the same rockfill, runs through.
 //! * Interfaces whose normal stress is released to zero (`tests/hard_cases.rs`,
 //!   `interfaces_released_to_zero_normal_stress`, ignored): two blocks on a zero-thickness
 //!   layer pushed 2 mm sideways while a 100 Pa normal pressure goes to 0. Mohr–Coulomb and

@@ -729,14 +729,25 @@ fn default_keeps_the_shear_curves_of_the_crosscheck() {
     // reading had them. Measured (100 / 200 / 400 kPa): u50 14.47 / 14.38 / 14.27 mm against
     // 14.54 / 14.47 / 14.38 mm, u95 53.47 / 54.40 / 55.17 mm against 53.78 / 54.65 / 55.38 mm,
     // peaks equal to 0.1 kPa; the normal displacement at 200 mm is −2.24 / −0.84 / +0.57 mm
-    // (dilation, dilation, contraction; legacy −2.23 / −0.83 / +0.59 mm).
-    let new = strain_model();
+    // (dilation, dilation, contraction; legacy −2.23 / −0.83 / +0.59 mm). Those are the strain
+    // reading's, whose dilatancy is also held to 0.05 mm of the legacy one; the default's shear
+    // curves are held to the same tolerances (its v(200 mm), printed, is in the module docs).
     let old = model(StiffnessBasis::Displacement);
-    for sn in [100.0, 200.0, 400.0] {
-        let (tp, u50, u95, v) = crosscheck_row(&new, sn * KPA);
+    let readings = [
+        (
+            "default",
+            GpInterface::new(GpInterfaceParams::default()).expect("the default"),
+        ),
+        ("strain reading", strain_model()),
+    ];
+    for ((name, new), sn) in readings
+        .iter()
+        .flat_map(|r| [100.0, 200.0, 400.0].map(|sn| (r, sn)))
+    {
+        let (tp, u50, u95, v) = crosscheck_row(new, sn * KPA);
         let (tp0, u50_0, u95_0, v0) = crosscheck_row(&old, sn * KPA);
         println!(
-            "cross-check σn = {sn} kPa: default τp = {:.2} kPa, u50 = {:.2} mm, u95 = {:.2} mm, \
+            "cross-check σn = {sn} kPa: {name} τp = {:.2} kPa, u50 = {:.2} mm, u95 = {:.2} mm, \
              v(200 mm) = {:.3} mm; legacy {:.2} kPa, {:.2} mm, {:.2} mm, {:.3} mm",
             tp / KPA,
             u50 / MM,
@@ -750,7 +761,9 @@ fn default_keeps_the_shear_curves_of_the_crosscheck() {
         assert!((tp / tp0 - 1.0).abs() < 0.002, "peak {tp} vs {tp0}");
         assert!((u50 / u50_0 - 1.0).abs() < 0.01, "u50 {u50} vs {u50_0}");
         assert!((u95 / u95_0 - 1.0).abs() < 0.01, "u95 {u95} vs {u95_0}");
-        assert!((v - v0).abs() < 0.05 * MM, "v(200 mm) {v} vs {v0}");
+        if *name == "strain reading" {
+            assert!((v - v0).abs() < 0.05 * MM, "v(200 mm) {v} vs {v0}");
+        }
     }
 }
 
