@@ -89,7 +89,8 @@
 //! cut-backs counted, no NaN in any output, results within stated bounds): one load step per
 //! stage on a GP embankment built in layers (5 cut-backs), freshly placed unconfined layers, GP
 //! rockfill pulled to 1.05 times its tension cut-off, slab–cushion interfaces opening at the
-//! crest under impoundment with each interface law, a slab on an 89.8° abutment, faces of a
+//! crest under impoundment with each interface law (the GP law in its reading before issue 19;
+//! its bounded default converges there without opening), a slab on an 89.8° abutment, faces of a
 //! zero-thickness element 1e-10 m apart (and 1e-8 m apart refused), interfaces at σ_n = 100 Pa,
 //! and 10,000 small stress cycles at a rockfill GP point. Two cases fail and stay ignored with
 //! their measurements (below, known defects).
