@@ -870,12 +870,18 @@ fn if3_cyclic_contraction_decays_with_the_default_elastic_reading() {
             inc[8] / inc[0],
             st.void_ratio
         );
-        assert!(inc.iter().all(|&x| x > 0.0), "contraction accumulates: {inc:?}");
-        for w in inc.windows(2) {
-            assert!(w[1] < w[0], "decreasing rate: {inc:?}");
-        }
-        assert!(inc[8] < 0.9 * inc[0], "cycle 10 vs cycle 2: {inc:?}");
+        assert_decaying_contraction(&inc, 0.9);
     }
+}
+
+/// Per-cycle closures `inc` (cycles 2 to 10) that are all positive (contraction accumulates),
+/// each smaller than the one before, and the last below `ratio` times the first.
+fn assert_decaying_contraction(inc: &[f64], ratio: f64) {
+    assert!(inc.iter().all(|&x| x > 0.0), "contraction accumulates: {inc:?}");
+    for w in inc.windows(2) {
+        assert!(w[1] < w[0], "decreasing rate: {inc:?}");
+    }
+    assert!(inc[8] < ratio * inc[0], "cycle 10 vs cycle 2: {inc:?}");
 }
 
 #[test]
@@ -895,11 +901,7 @@ fn if3_cyclic_contraction_decays_within_the_bound_with_the_strain_reading() {
             inc[8] / inc[0],
             st.void_ratio
         );
-        assert!(inc.iter().all(|&x| x > 0.0), "contraction accumulates: {inc:?}");
-        for w in inc.windows(2) {
-            assert!(w[1] < w[0], "decreasing rate: {inc:?}");
-        }
-        assert!(inc[8] < 0.4 * inc[0], "cycle 10 vs cycle 2: {inc:?}");
+        assert_decaying_contraction(&inc, 0.4);
         assert!(v[9] < closure_bound(&m));
     }
 }
