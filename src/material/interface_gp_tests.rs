@@ -392,15 +392,7 @@ fn if1_normal_compression_unloading_reloading() {
                 .state
                 .open
         };
-        let (mut closed_at, mut open_at) = (0.0, 400.0);
-        for _ in 0..30 {
-            let mid = 0.5 * (closed_at + open_at);
-            if opens(mid) {
-                open_at = mid;
-            } else {
-                closed_at = mid;
-            }
-        }
+        let open_at = opening_from_100_kpa(&m) / MM;
         match (basis, reading) {
             (StiffnessBasis::Strain, ElasticVoidRatio::Initial) => assert!(opens(8.0) && !opens(7.0)),
             (StiffnessBasis::Strain, ElasticVoidRatio::Current) => assert!(opens(10.0) && !opens(8.0)),
