@@ -112,7 +112,7 @@ impl Model<'_> {
         };
         let (fe, ke) = evaluated.map_err(|m| SolveError::Material {
             element: mesh.elements[e].id,
-            reason: m.reason,
+            reason: format!("{}: {}", element_place(mesh, e), m.reason),
         })?;
         add_owned_rows(&self.disc, f_int, &rows, fe.as_slice())?;
         let Some(ke) = ke else {
@@ -139,4 +139,20 @@ impl Model<'_> {
         }
         Ok(())
     }
+}
+
+/// Where element `e` of `mesh` is, for messages: "block 'NAME' at (x, y, z)" with the centroid
+/// of its nodes in m.
+fn element_place(mesh: &crate::mesh::Mesh, e: usize) -> String {
+    let el = &mesh.elements[e];
+    let mut c = [0.0f64; 3];
+    for &n in &el.nodes {
+        for (k, ck) in c.iter_mut().enumerate() {
+            *ck += mesh.coords[n as usize][k] / 8.0;
+        }
+    }
+    format!(
+        "block '{}' at ({:.2}, {:.2}, {:.2})",
+        mesh.blocks[el.block as usize].name, c[0], c[1], c[2]
+    )
 }

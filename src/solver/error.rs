@@ -61,8 +61,9 @@ pub enum SolveError {
     Collective(String),
     /// A load step could not be completed even after cutting it back.
     #[error(
-        "{} from {} to {} failed after {cutbacks} cut-back(s); the last converged state is {}: {source}",
-        kind.noun(), kind.at(*from), kind.at(*to), kind.at(*from)
+        "{} from {} to {} ({}) failed after {cutbacks} cut-back(s); the last converged state is {}: \
+         {source}",
+        kind.noun(), kind.at(*from), kind.at(*to), kind.span(*to - *from), kind.at(*from)
     )]
     Step {
         /// Load or time steps (for the message).

@@ -105,7 +105,15 @@ impl NewtonStep<'_, '_> {
     fn conclude(self, outcome: SnesOutcome, iterations: u32, x: &Vector) -> Result<(), SolveError> {
         let model = self.model;
         let residual = self.report.residuals.last().copied().unwrap_or(f64::NAN);
-        let worst = |model: &Model| model.worst_node(&self.f_int, &self.target.f_ext, &self.target.targets);
+        // a material failure at a trial iterate (rejected by the line search) is often the cause
+        let rejected = self.failure.as_ref().map_or(String::new(), |m| {
+            format!("; a material update failed at a trial iterate: {m}")
+        });
+        let worst = |model: &Model| {
+            model
+                .worst_node(&self.f_int, &self.target.f_ext, &self.target.targets)
+                .map(|w| w + &rejected)
+        };
         match outcome {
             SnesOutcome::Converged => {
                 let same = model.u.read(|u| x.read(|s| u == s))??;

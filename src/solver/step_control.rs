@@ -30,6 +30,14 @@ impl StepKind {
         }
     }
 
+    /// "Δλ = 1.250e-1" or "Δt = 1.000e-2 s": the size of a step, legible however small.
+    pub fn span(self, d: f64) -> String {
+        match self {
+            StepKind::Load => format!("Δλ = {d:.3e}"),
+            StepKind::Time => format!("Δt = {d:.3e} s"),
+        }
+    }
+
     /// "load step" or "time step".
     pub fn noun(self) -> &'static str {
         match self {
@@ -222,7 +230,9 @@ mod tests {
             .expect_err("fails");
         let m = e.to_string();
         assert!(
-            m.starts_with("time step from t = 0.010000 s to t = 0.020000 s failed after 0 cut-back(s)")
+            m.starts_with(
+                "time step from t = 0.010000 s to t = 0.020000 s (Δt = 1.000e-2 s) failed after 0 cut-back(s)"
+            )
                 && m.contains("the last converged state is t = 0.010000 s: no"),
             "{m}"
         );
