@@ -46,9 +46,11 @@
 //!   loading", again at the substep's elastic trial point; `start` reads it at the start only,
 //!   where the point is its own reversal point. With `start`, a path whose every substep starts
 //!   just on the unloading side (the indicator −8.2e-5 or −2.1e-4, loading a little further on)
-//!   moves its reversal point along at every substep, and the change-point retries creep on by
-//!   about 1e-6 of the step until NMAX (tests `neutral_loading_path_does_not_stall`, now with
-//!   the default, and `start_reading_stalls_on_the_neutral_loading_paths`). `trial` changes
+//!   moved its reversal point along at every substep, and the change-point retries crept on by
+//!   about 1e-6 of the step until NMAX; since the integrator locates at most
+//!   [`MAX_BRANCH_FLIPS`](crate::material::gp_integrator::MAX_BRANCH_FLIPS) branch flips per
+//!   step, both readings follow these paths (tests `neutral_loading_path_does_not_stall` and
+//!   `start_reading_follows_the_neutral_loading_paths`). `trial` changes
 //!   the branch only where an unloading turns into reverse loading within a substep; on 400
 //!   random paths of the property tests it follows every path (`start` was excluded from 2
 //!   known ones), and it leaves virgin loading unchanged (same stresses to the bit).
@@ -383,8 +385,7 @@ pub enum VoidRatioBound {
 #[serde(rename_all = "snake_case")]
 pub enum ReversalBranch {
     /// (I18) steps 2–5 at the start itself: the point is its own new reversal point, and the
-    /// re-mapped nᵀdσe decides (the results of the README's seed runs before issue 19; stalls
-    /// on neutral-loading paths).
+    /// re-mapped nᵀdσe decides (the results of the README's seed runs before issue 19).
     Start,
     /// When the re-mapped nᵀdσe at the start is not loading, it is read again at the elastic
     /// trial point σ + dσe of the substep, away from the new reversal point: a reversal is then
