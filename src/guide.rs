@@ -100,7 +100,7 @@
 //!
 //! Named options of the inferred choices: `lode`, `hden_on_hu`, `softening_guard`, `xi_rule`
 //! (rockfill); `peak_form`, `fh_mode`, `stiffness_basis`, `elastic_void_ratio`,
-//! `normal_basis`, `void_ratio_bound` with `e_min`, `reversal_branch` (GP interface; their defaults
+//! `normal_basis`, `void_ratio_bound` with `e_min`, `reversal_branch`, `stress_ratio_cap` (GP interface; their defaults
 //! and the measurements behind them: [`interface_gp`](crate::material::interface_gp)). With the rockfill GP model in a staged dam, give
 //! `tangent: numerical`: the continuum tangent of a large strain step is far from the
 //! consistent one, and Newton then creeps ([`crate::performance`]). `cfrd point` drives one

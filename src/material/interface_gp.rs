@@ -211,6 +211,18 @@
 //!   of 124/132/180, with τ_s errors of +133/+11.6/+0.36 Pa against a STOL 10⁻⁷ reference
 //!   (67 197.0 Pa) instead of −5.3/−1.6/−0.18 Pa (the old scheme over-resolved after the
 //!   DT_MIN start at τ = 0).
+//! * **Stress-ratio cap** (`stress_ratio_cap`, issue 18; not in the seed or the spec, the
+//!   interface analogue of the rockfill's η cap of §8.6 item 1): after each accepted substep
+//!   τ is scaled so that |τ|/σ̂_n ≤ η_p(ψ) (I9), σ_n unchanged. Cyclic reloading (I12) maps
+//!   onto the max-history circle and never sees the peak circle, so without the cap the stress
+//!   ratio grows without bound when σ_n falls while the shear reloads: 6.7·η_p in 20 cycles
+//!   of ±5 mm with σ_n between 200 and 40 kPa, where the substepping then stalls at NMAX
+//!   (test `stress_ratio_stays_on_the_peak_circle_under_cyclic_unloading`), and η = 10.4
+//!   against η_p = 0.80 at the crest of the coarse seed quake, which stopped there at
+//!   t = 4.56 s. A loading substep that ends on the cap has the continuum tangent J·D^ep with
+//!   the cap's Jacobian J (1.0 % off central differences where D^ep alone is 58 % off, test
+//!   `tangent_on_the_cap_follows_the_update`). On the coarse static seed dam the cap moves the
+//!   slab stresses by up to 0.10 MPa (golden `seed_coarse_gp_interface.json`).
 //! * The elastic factor (1+e)/e uses max(e, 0.01) under `elastic_void_ratio = current`.
 //! * Branch decisions (I17)/(I18) are taken at substep starts only; a branch flip at the Euler
 //!   predictor rejects the substep (spec §8.2), so an elastic start at τ = 0 (where the c0 limit
@@ -395,6 +407,22 @@ pub enum ReversalBranch {
     Trial,
 }
 
+/// Bound of the stress ratio η = |τ|/σ̂_n after each accepted substep (issue 18).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum StressRatioCap {
+    /// No bound: the seed's equations alone. Cyclic reloading (I12) maps onto the
+    /// max-history circle and never sees the peak circle, so under repeated shear at low σ_n
+    /// η grows without bound (measured on the coarse seed quake: η = 10.4 against η_p = 0.80
+    /// at the crest, t = 4.56 s).
+    None,
+    /// τ is scaled back onto the peak circle |r| = η_p(ψ) (spec (I9), (I11)) after each
+    /// accepted substep, σ_n unchanged: the interface analogue of the rockfill's η cap (spec
+    /// §8.6 item 1). Default.
+    #[default]
+    Peak,
+}
+
 /// Tangent returned by the update (spec §8.5).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
@@ -483,6 +511,9 @@ pub struct GpInterfaceParams {
     /// Where the branch after a reversal is decided (spec (I18)).
     #[serde(default)]
     pub reversal_branch: ReversalBranch,
+    /// Bound of the stress ratio after each accepted substep (issue 18).
+    #[serde(default)]
+    pub stress_ratio_cap: StressRatioCap,
     /// Stress floor σ_min used in the stress-dependent moduli (Pa). Spec: 1 kPa.
     #[serde(default = "default_sigma_min")]
     pub sigma_min: f64,
@@ -549,6 +580,7 @@ impl Default for GpInterfaceParams {
             e_min: default_e_min(),
             elastic_void_ratio: ElasticVoidRatio::default(),
             reversal_branch: ReversalBranch::default(),
+            stress_ratio_cap: StressRatioCap::default(),
             sigma_min: default_sigma_min(),
             pa: default_pa(),
             sigma_open: 0.0,
@@ -860,7 +892,10 @@ impl InterfaceModel for GpInterface {
                             self.numerical_tangent(prev, d_jump, &st)?,
                             TangentKind::Consistent,
                         ),
-                        TangentChoice::Continuum => (self.traction_tangent(&d), kind),
+                        TangentChoice::Continuum => {
+                            let d = self.capped_tangent(&st, br, d);
+                            (self.traction_tangent(&d), kind)
+                        }
                     }
                 }
                 None => {

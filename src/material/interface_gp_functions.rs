@@ -22,12 +22,15 @@
 //!   stress error and the error of the void ratio through the plastic strain.
 //! * Opening (spec §2.12) is a stop inside the substep ([`GpModelFunctions::stop_in_substep`]):
 //!   the crossing σ_n = σ_open is interpolated linearly.
-//! * After an accepted substep η_max and σ_c,max are updated (spec G7).
+//! * After an accepted substep τ is scaled back onto the peak circle |r| = η_p(ψ) when it lies
+//!   outside (`stress_ratio_cap = peak`, the default; issue 18), then η_max and σ_c,max are
+//!   updated (spec G7). A loading substep that ends on the cap gets the cap's Jacobian in its
+//!   continuum tangent ([`GpInterface::capped_tangent`]).
 
 use super::gp_integrator::{cosine, Branch, GpModelFunctions, GpPoint, PlasticData, StageIncrement};
 use super::interface_gp::{
     ElasticVoidRatio, FhMode, GpBranch, GpInterface, GpInterfaceState, PeakForm, ReversalBranch,
-    VoidRatioBound,
+    StressRatioCap, VoidRatioBound,
 };
 use crate::error::MaterialError;
 use nalgebra::{Matrix3, SVector, Vector2, Vector3};
@@ -38,6 +41,9 @@ pub const VOID_RATIO_FLOOR: f64 = 0.01;
 /// Floor of the closure factor g of `void_ratio_bound = smooth` (caps the normal stiffening
 /// at 10⁶, reached only by a strain-controlled closure beyond the bound).
 pub const CLOSURE_FACTOR_FLOOR: f64 = 1e-6;
+/// Relative distance below the stress-ratio cap within which an end state counts as on it
+/// (the cap leaves |τ| = η_cap·σ̂_n up to rounding).
+const CAP_TOUCH: f64 = 1e-9;
 /// Cap of √(ρ_max/ρ) (spec (I12): ρ ≥ 0.01·ρ_max).
 pub const MAPPING_RATIO_CAP: f64 = 10.0;
 /// Below this |r − r_A| the mapping direction is taken from the trial increment (spec (I12)).
@@ -467,6 +473,70 @@ impl GpInterface {
         st.sigma_c_max = pt.memory.sigma_c_max;
     }
 
+    /// The bound of η = |τ|/σ̂_n at a point: η_p(ψ) (spec (I9)) under
+    /// `stress_ratio_cap = peak`, none otherwise.
+    pub fn ratio_cap(&self, pt: &InterfacePoint) -> Option<f64> {
+        match self.params.stress_ratio_cap {
+            StressRatioCap::None => None,
+            StressRatioCap::Peak => {
+                let psi = self.state_parameter(pt.sigma[2], self.void_ratio_at(pt), pt.kappa[K_BREAKAGE]);
+                Some(self.peak_ratio(psi))
+            }
+        }
+    }
+
+    /// Scales τ back to |τ| = η_cap·σ̂_n when the point lies outside the cap, σ_n unchanged.
+    fn apply_ratio_cap(&self, pt: &mut InterfacePoint) {
+        let Some(cap) = self.ratio_cap(pt) else {
+            return;
+        };
+        let limit = cap * pt.sigma[2].max(self.params.sigma_min);
+        let tau = pt.sigma[0].hypot(pt.sigma[1]);
+        if tau > limit {
+            pt.sigma[0] *= limit / tau;
+            pt.sigma[1] *= limit / tau;
+        }
+    }
+
+    /// The continuum tangent of a loading substep that ended on the cap: the Jacobian of the
+    /// cap's scaling at the end state times D^ep,
+    ///
+    /// ```text
+    /// D_cap = J·D^ep,   J = [[I − t·tᵀ, η_cap·t·[σ_n > σ_min]], [0, 0, 1]],   t = τ/|τ|,
+    /// ```
+    ///
+    /// so that a point sliding on the peak circle carries no shear stiffness along τ beyond
+    /// η_cap·dσ_n (the dependence of η_cap on ψ is left out). Other points keep `d`.
+    pub fn capped_tangent(&self, st: &GpInterfaceState, br: Branch, d: Matrix3<f64>) -> Matrix3<f64> {
+        let pt = self.to_point(st);
+        let (Branch::Loading, Some(cap)) = (br, self.ratio_cap(&pt)) else {
+            return d;
+        };
+        let sig = st.stress[2].max(self.params.sigma_min);
+        let tau = st.stress[0].hypot(st.stress[1]);
+        if tau < (1.0 - CAP_TOUCH) * cap * sig || tau == 0.0 {
+            return d;
+        }
+        let t = Vector2::new(st.stress[0], st.stress[1]) / tau;
+        let normal = if st.stress[2] > self.params.sigma_min {
+            cap
+        } else {
+            0.0
+        };
+        let j = Matrix3::new(
+            1.0 - t[0] * t[0],
+            -t[0] * t[1],
+            normal * t[0],
+            -t[1] * t[0],
+            1.0 - t[1] * t[1],
+            normal * t[1],
+            0.0,
+            0.0,
+            1.0,
+        );
+        j * d
+    }
+
     /// Branch flag of a state after a substep on `br` (for output): virgin or cyclic loading
     /// by the mapping (spec (I12)), elastic otherwise.
     pub fn branch_flag(&self, st: &GpInterfaceState, br: Branch, d_eps: &Vector3<f64>) -> GpBranch {
@@ -587,8 +657,10 @@ impl GpModelFunctions<3, KAPPA> for GpInterface {
         dk
     }
 
-    /// η_max and σ_c,max updated after every accepted substep (spec G7, (I13)).
+    /// The stress-ratio cap (issue 18, [`StressRatioCap`]), then η_max and σ_c,max updated
+    /// (spec G7, (I13)).
     fn after_accept(&self, pt: &mut InterfacePoint, branch: Branch) -> Result<Branch, MaterialError> {
+        self.apply_ratio_cap(pt);
         let eta = self.stress_ratio(&pt.sigma.into()).norm();
         pt.memory.eta_max = pt.memory.eta_max.max(eta);
         pt.memory.sigma_c_max = pt.memory.sigma_c_max.max(self.surface_size(pt.sigma[2], eta));
