@@ -150,14 +150,20 @@ enum Command {
         out: Option<PathBuf>,
     },
     /// Overlay the slab profiles (seed Figs. 8, 9) of several runs with `output.profiles`, e.g.
-    /// one per interface model: `cfrd overlay hyperbolic=out/a mohr_coulomb=out/b -o fig.png`.
+    /// one per interface model: `cfrd overlay hyperbolic=out/a mohr_coulomb=out/b -o fig.png`;
+    /// with `--quake` the quake's before, after and residual profiles (seed Fig. 13).
     Overlay {
-        /// `LABEL=DIR` pairs, DIR holding the run's `fig08_slab_stress.csv`.
+        /// `LABEL=DIR` pairs, DIR holding the run's `fig08_slab_stress.csv` (or
+        /// `fig13_residual_slab.csv`).
         #[arg(required = true)]
         runs: Vec<String>,
         /// Output PNG.
         #[arg(short = 'o', long = "out")]
         out: PathBuf,
+        /// Overlay the quake's slab table instead (`fig13_residual_slab.csv`: before, after
+        /// and residual, seed Fig. 13).
+        #[arg(long)]
+        quake: bool,
     },
     /// Compare runs of one dam with a reference run: the error of the slab stresses and
     /// deflection (seed Figs. 8, 9) and of the crest settlement after impoundment, against each
@@ -386,9 +392,14 @@ fn main() -> ExitCode {
                 }
             }
         }
-        Command::Overlay { runs, out } => {
+        Command::Overlay { runs, out, quake } => {
+            let table = if quake {
+                cfrd::profiles::SlabTable::Quake
+            } else {
+                cfrd::profiles::SlabTable::Static
+            };
             match label_pairs(&runs)
-                .map(|p| cfrd::profiles::overlay_slab_profiles(&p, &out).map_err(|e| e.to_string()))
+                .map(|p| cfrd::profiles::overlay_slab_profiles(&p, table, &out).map_err(|e| e.to_string()))
             {
                 Ok(Ok(n)) => {
                     println!("{n} rows from {} run(s): {}", runs.len(), out.display());

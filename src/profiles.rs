@@ -521,9 +521,23 @@ pub(crate) struct SlabTableRow {
     pub(crate) deflection: f64,
 }
 
-/// Reads the `fig08_slab_stress.csv` of a run directory.
-pub(crate) fn read_slab_table(dir: &Path) -> Result<Vec<SlabTableRow>, ProfilesError> {
-    read_slab_csv(&dir.join("fig08_slab_stress.csv"))
+/// Which slab table of a run [`overlay_slab_profiles`] reads.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SlabTable {
+    /// `fig08_slab_stress.csv`: end of construction and after impoundment (seed Figs. 8, 9).
+    Static,
+    /// `fig13_residual_slab.csv`: before, after and residual of a quake (seed Fig. 13).
+    Quake,
+}
+
+impl SlabTable {
+    /// The table's file in a run directory and the figures it stands for.
+    fn file_and_figures(self) -> (&'static str, &'static str) {
+        match self {
+            SlabTable::Static => ("fig08_slab_stress.csv", "seed Figs. 8, 9"),
+            SlabTable::Quake => ("fig13_residual_slab.csv", "seed Fig. 13"),
+        }
+    }
 }
 
 /// Reads a slab table with the columns `state,z_m,sigma_slope_Pa,sigma_axis_Pa,deflection_m`
@@ -561,14 +575,20 @@ pub(crate) fn read_slab_csv(path: &Path) -> Result<Vec<SlabTableRow>, ProfilesEr
     Ok(rows)
 }
 
-/// Overlays the slab profiles (seed Figs. 8 and 9) of several runs, e.g. one per interface
-/// model: σ_s, σ_a and the deflection versus elevation at the end of construction and after
-/// impoundment, one panel each, one line per run. `runs` are (label, run directory holding
-/// `fig08_slab_stress.csv`). Returns the number of rows read.
-pub fn overlay_slab_profiles(runs: &[(String, PathBuf)], png: &Path) -> Result<usize, ProfilesError> {
+/// Overlays the slab profiles of several runs, e.g. one per interface model: σ_s, σ_a and the
+/// deflection versus elevation for each state of the table (end of construction and after
+/// impoundment, seed Figs. 8 and 9; or before, after and residual of a quake, seed Fig. 13),
+/// one panel each, one line per run. `runs` are (label, run directory holding the table).
+/// Returns the number of rows read.
+pub fn overlay_slab_profiles(
+    runs: &[(String, PathBuf)],
+    table: SlabTable,
+    png: &Path,
+) -> Result<usize, ProfilesError> {
+    let (file, figures) = table.file_and_figures();
     let tables = runs
         .iter()
-        .map(|(label, dir)| Ok((label.as_str(), read_slab_table(dir)?)))
+        .map(|(label, dir)| Ok((label.as_str(), read_slab_csv(&dir.join(file))?)))
         .collect::<Result<Vec<_>, ProfilesError>>()?;
     let mut states: Vec<String> = Vec::new();
     for (_, rows) in &tables {
@@ -592,8 +612,10 @@ pub fn overlay_slab_profiles(runs: &[(String, PathBuf)], png: &Path) -> Result<u
             r.deflection * 100.0
         }),
     ];
-    let mut figure =
-        Figure::new("Slab at the central section, one line per run (seed Figs. 8, 9)").columns(2);
+    let mut figure = Figure::new(format!(
+        "Slab at the central section, one line per run ({figures})"
+    ))
+    .columns(states.len().min(3));
     for (title, x_label, pick) in quantities {
         for state in &states {
             let mut panel = Panel::new(format!("{title}, {state}"), x_label, "z (m)");
@@ -831,7 +853,24 @@ mod tests {
             runs.push((label.to_string(), dir));
         }
         let png = tmp.path().join("overlay.png");
-        assert_eq!(overlay_slab_profiles(&runs, &png).expect("overlay"), 12);
+        assert_eq!(
+            overlay_slab_profiles(&runs, SlabTable::Static, &png).expect("overlay"),
+            12
+        );
+        assert!(std::fs::metadata(&png).expect("png written").len() > 1000);
+        // a quake's table, three states
+        for (k, (_, dir)) in runs.iter().enumerate() {
+            let mut text = header.to_string();
+            for state in ["before the quake", "after the quake", "residual"] {
+                let _ = writeln!(text, "{state},2800,{},-3e6,0.05", -1e6 * (k + 1) as f64);
+            }
+            std::fs::write(dir.join("fig13_residual_slab.csv"), text).unwrap();
+        }
+        std::fs::remove_file(&png).unwrap();
+        assert_eq!(
+            overlay_slab_profiles(&runs, SlabTable::Quake, &png).expect("quake overlay"),
+            6
+        );
         assert!(std::fs::metadata(&png).expect("png written").len() > 1000);
 
         std::fs::write(
@@ -839,7 +878,9 @@ mod tests {
             format!("{header}after impoundment,2700,-1e6,oops,0.01\n"),
         )
         .unwrap();
-        let e = overlay_slab_profiles(&runs, &png).unwrap_err().to_string();
+        let e = overlay_slab_profiles(&runs, SlabTable::Static, &png)
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("mohr_coulomb") && e.contains("line 2"), "{e}");
     }
 

@@ -338,24 +338,6 @@
 //!   points run out of substeps: most likely the GP interface's response jumps in the
 //!   increment where τ crosses zero after a reversal (0.1–0.3 kPa at the material point).
 //!   A reversal rule continuous in the increment is what the strain reading needs.
-//! * **The GP-interface quake** with the bounded default (`seed_coarse_gp_interface_quake.yaml`
-//!   with the default keys written out, 2 ranks, restarted from its post-impoundment
-//!   checkpoint). It used to cut back at t = 3.87 s and fail there. The out-of-balance force
-//!   then named (2.7·10⁸ N in the lowest rockfill) was the inertia residual of trial iterates
-//!   that the line search rejected; the cause was `interface_3` near the left bank at
-//!   el. 2840 m, whose GP substepping ran out of attempts (NMAX) past its peak (η ≈ η_max ≈
-//!   1.09), the loading direction turning within a small fraction of every substep. Failure
-//!   messages now name the block and place of a failing element, and a material failure at a
-//!   rejected trial iterate behind a Newton failure. Since the integrator locates at most
-//!   `MAX_BRANCH_FLIPS` branch flips per step ([`crate::material::gp_integrator`]), the quake
-//!   runs on to **t = 4.56 s** (245 s, 1810 Newton iterations, 53 cut-backs in the run) and
-//!   fails at the crest (node at el. 2852 m, `fill_008_cushion` / `interface_3`, out-of-balance
-//!   force 1.1·10¹⁰ N). Dumped there, an interface point of the crest row carries
-//!   |τ| = 2.07 MPa at σ_n = 0.20 MPa: **η = 10.4** on a cyclic branch, with e = 0.533,
-//!   ψ = +0.20 and the peak ratio η_p = 0.80. Reloading on the mapping rule's cyclic branch
-//!   does not see η_p, so the stress ratio passes it without bound; the spec's η cap (§8.6
-//!   item 1) is for the rockfill only. Bounding η on the interface's cyclic branches is the next
-//!   step. The ideal elasto-plastic interface's quake, with the same rockfill, runs through.
 //! * Interfaces whose normal stress is released to zero (`tests/hard_cases.rs`,
 //!   `interfaces_released_to_zero_normal_stress`, ignored): two blocks on a zero-thickness
 //!   layer pushed 2 mm sideways while a 100 Pa normal pressure goes to 0. Mohr–Coulomb and

@@ -173,31 +173,6 @@ fn generated_dam_runs_its_schedule_and_balances_weight_and_water() {
     }
 }
 
-/// Asserts that every step field of results file `a` equals that of `b` bit for bit; returns the
-/// field names.
-fn assert_bitwise_equal(a: &std::path::Path, b: &std::path::Path) -> Vec<String> {
-    let fields: Vec<String> = layout(a)
-        .into_iter()
-        .map(|(n, _)| n)
-        .filter(|n| n.starts_with("/steps/"))
-        .collect();
-    assert!(!fields.is_empty(), "{} has step fields", a.display());
-    for name in &fields {
-        let (x, y) = (read_f64(a, name), read_f64(b, name));
-        let differ = x
-            .iter()
-            .zip(&y)
-            .filter(|(u, v)| u.to_bits() != v.to_bits())
-            .count();
-        assert!(
-            x.len() == y.len() && differ == 0,
-            "{name}: {differ} of {} values differ",
-            x.len()
-        );
-    }
-    fields
-}
-
 /// Issue 4, acceptance 4: step control under stress. The same small dam with generalized-
 /// plasticity rockfill and one load step per stage: the fill layers and the impoundment are
 /// too large for one Newton solve (at most 15 iterations), so steps are cut back and regrown;

@@ -62,7 +62,9 @@ impl Problem<'_> {
         };
         let stage = d.clone();
         let ground: GroundMotion = Box::new(move |t| stage.ground_acceleration(t));
-        let newmark = Newmark::new(params, damping, mass, k0, ground, &self.model.u_committed)?;
+        let order = self.model.disc.canonical_dofs();
+        let u = &self.model.u_committed;
+        let newmark = Newmark::new(params, damping, (mass, k0), ground, u, &order)?;
         Ok(Box::new(newmark))
     }
 

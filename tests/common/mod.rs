@@ -301,3 +301,28 @@ pub fn restart_matches_bitwise(dir: &Path, scene: &str, checkpoint: &str, out: &
         text(&o)
     );
 }
+
+/// Asserts that every step field of results file `a` equals that of `b` bit for bit; returns the
+/// field names.
+pub fn assert_bitwise_equal(a: &Path, b: &Path) -> Vec<String> {
+    let fields: Vec<String> = layout(a)
+        .into_iter()
+        .map(|(n, _)| n)
+        .filter(|n| n.starts_with("/steps/"))
+        .collect();
+    assert!(!fields.is_empty(), "{} has step fields", a.display());
+    for name in &fields {
+        let (x, y) = (read_f64(a, name), read_f64(b, name));
+        let differ = x
+            .iter()
+            .zip(&y)
+            .filter(|(u, v)| u.to_bits() != v.to_bits())
+            .count();
+        assert!(
+            x.len() == y.len() && differ == 0,
+            "{name}: {differ} of {} values differ",
+            x.len()
+        );
+    }
+    fields
+}

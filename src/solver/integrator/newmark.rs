@@ -30,7 +30,7 @@
 //! seismic §3.3, not the tangent: damping forces then do not jump as points yield).
 
 use super::{Rates, TimeIntegrator};
-use crate::linalg::petsc::{Matrix, PetscError, Vector};
+use crate::linalg::petsc::{CanonicalProduct, Matrix, PetscError, Vector};
 
 /// Newmark's parameters (β, γ) and HHT-α's α.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -133,6 +133,9 @@ pub struct Newmark {
     mass: Matrix,
     /// K₀ (only when a_K ≠ 0).
     k0: Option<Matrix>,
+    /// M·x and K₀·x summed in the mesh's DOF order (rank-count independent).
+    mass_product: CanonicalProduct,
+    k0_product: Option<CanonicalProduct>,
     ground: GroundMotion,
     u0: Vector,
     v0: Vector,
@@ -146,14 +149,15 @@ pub struct Newmark {
 
 impl Newmark {
     /// Starts at rest at the displacement `u` (v₀ = a₀ = 0, h₀ = 0) with mass `mass`, damping
-    /// on `mass` and `k0`, and the ground motion `ground`.
+    /// on `mass` and `k0`, and the ground motion `ground`; `mesh_order` lists the PETSc index
+    /// of every DOF in the mesh's order, the order in which the products with M and K₀ sum.
     pub fn new(
         params: NewmarkParameters,
         damping: Rayleigh,
-        mass: Matrix,
-        k0: Option<Matrix>,
+        (mass, k0): (Matrix, Option<Matrix>),
         ground: GroundMotion,
         u: &Vector,
+        mesh_order: &[i32],
     ) -> Result<Self, PetscError> {
         let zero = || -> Result<Vector, PetscError> {
             let mut z = u.duplicate()?;
@@ -166,11 +170,18 @@ impl Newmark {
             true => Some(zero()?),
             false => None,
         };
+        let mass_product = CanonicalProduct::new(&mass, u, mesh_order)?;
+        let k0_product = match &k0 {
+            Some(k) => Some(CanonicalProduct::new(k, u, mesh_order)?),
+            None => None,
+        };
         Ok(Newmark {
             params,
             damping,
             mass,
             k0,
+            mass_product,
+            k0_product,
             ground,
             u0,
             v0: zero()?,
@@ -233,7 +244,7 @@ impl Newmark {
             }
         })?;
         let mut g = a1.duplicate()?;
-        self.mass.mult(a1, &mut g)?;
+        self.mass_product.mult(a1, &mut g)?;
         Ok(g)
     }
 }
@@ -253,7 +264,7 @@ impl TimeIntegrator for Newmark {
         let (mut a1, v1) = self.rates_at(x)?;
         // M·(a₁/(1+α) + a_M·v₁ + ι·a_g): the ground acceleration on every node's three components
         let mut g = self.mass_force(&mut a1, Some(&v1))?;
-        if let Some(k0) = &self.k0 {
+        if let Some(k0) = &self.k0_product {
             let mut kv = x.duplicate()?;
             k0.mult(&v1, &mut kv)?;
             g.axpy(self.damping.stiffness, &kv)?;
