@@ -349,8 +349,9 @@
 //!   relative below the interface's integration noise (STOL 1e-4); with `stol: 1.0e-8` all
 //!   40,002 steps run (`hard_cases::ten_thousand_small_cycles_at_a_gp_interface_point`, ignored).
 //! * Dynamics is verified on closed forms (below); the seed dam's quake (seed Figs. 12–20) is
-//!   compared with the seed for the ideal elasto-plastic interface on the coarse mesh only
-//!   ("The seed quake's figures").
+//!   compared with the seed on the coarse mesh only ("The seed quake's figures"): the coarse
+//!   mesh has no interface element above the water line, so the seed's opening findings cannot
+//!   show on it.
 //!
 //! ## Dynamics
 //!

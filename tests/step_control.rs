@@ -142,3 +142,28 @@ fn a_failure_at_the_integration_noise_names_the_remedy() {
         );
     }
 }
+
+/// A linear solver that fails (here GMRES without a preconditioner, at most two iterations) is a
+/// failed step like any other: the step is cut back, and when it still fails the run ends with
+/// exit code 3 and PETSc's reason by name, on every rank without a hang (issue 20,
+/// acceptance 4).
+#[test]
+fn a_linear_solver_failure_is_cut_back_and_reported_by_name() {
+    let dir = tempdir();
+    let yaml = scene(15).replace(
+        "solver: { load_steps: 1, newton_max_iterations: 15 }",
+        "solver: { load_steps: 1, newton_max_iterations: 15, max_cutbacks: 2, \
+         petsc_options: '-ksp_type gmres -pc_type none -ksp_max_it 2' }",
+    );
+    assert!(yaml.contains("ksp_max_it 2"), "{yaml}");
+    std::fs::write(dir.path().join("linear.yaml"), yaml).unwrap();
+    let o = cfrd_mpi(2, dir.path(), &["run", "linear.yaml", "-o", "out"]);
+    let msg = text(&o);
+    assert_eq!(o.status.code(), Some(3), "{msg}");
+    assert!(msg.contains("failed after 2 cut-back(s)"), "{msg}");
+    assert!(
+        msg.contains("linear solver diverged: KSP_DIVERGED_ITS: the iteration limit (PETSc reason -3)"),
+        "{msg}"
+    );
+    assert!(!msg.contains("panicked"), "{msg}");
+}

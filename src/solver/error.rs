@@ -21,7 +21,10 @@ pub enum SolveError {
         element: u64,
     },
     /// The linear solver diverged.
-    #[error("linear solver diverged (PETSc reason {reason}) after {iterations} iterations")]
+    #[error(
+        "linear solver diverged: {} (PETSc reason {reason}) after {iterations} iterations",
+        ksp_reason_name(*reason)
+    )]
     Linear {
         /// PETSc's converged reason.
         reason: i32,
@@ -90,5 +93,45 @@ impl SolveError {
                 | SolveError::LineSearch { .. }
                 | SolveError::Linear { .. }
         )
+    }
+}
+
+/// The name of a value of PETSc's `KSPConvergedReason` (PETSc 3.18), as `-ksp_converged_reason`
+/// prints it, e.g. `KSP_DIVERGED_ITS` for −3.
+pub fn ksp_reason_name(reason: i32) -> &'static str {
+    match reason {
+        -2 => "KSP_DIVERGED_NULL",
+        -3 => "KSP_DIVERGED_ITS: the iteration limit",
+        -4 => "KSP_DIVERGED_DTOL: the residual grew",
+        -5 => "KSP_DIVERGED_BREAKDOWN",
+        -6 => "KSP_DIVERGED_BREAKDOWN_BICG",
+        -7 => "KSP_DIVERGED_NONSYMMETRIC",
+        -8 => "KSP_DIVERGED_INDEFINITE_PC",
+        -9 => "KSP_DIVERGED_NANORINF",
+        -10 => "KSP_DIVERGED_INDEFINITE_MAT",
+        -11 => "KSP_DIVERGED_PC_FAILED: the preconditioner failed",
+        0 => "KSP_CONVERGED_ITERATING",
+        r if r > 0 => "KSP_CONVERGED",
+        _ => "an unknown reason",
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_linear_failure_names_petscs_reason_and_is_recoverable() {
+        let e = SolveError::Linear {
+            reason: -3,
+            iterations: 30,
+        };
+        assert_eq!(
+            e.to_string(),
+            "linear solver diverged: KSP_DIVERGED_ITS: the iteration limit (PETSc reason -3) after 30 iterations"
+        );
+        assert!(e.recoverable());
+        assert!(ksp_reason_name(-11).starts_with("KSP_DIVERGED_PC_FAILED"));
+        assert_eq!(ksp_reason_name(-99), "an unknown reason");
     }
 }
