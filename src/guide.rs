@@ -364,6 +364,9 @@
 //!   uninterrupted run too, which is what makes the restart exact; so runs with step and with
 //!   stage checkpoints differ by rounding, which the path-dependent plasticity carries further
 //!   ([`crate::verification`]).
+//! * A step checkpoint inside a quake also holds the point states of the quake's start, from
+//!   which the restart rebuilds K₀ of Rayleigh damping and the modes, as the uninterrupted run
+//!   built them at the quake's start (for a plastic dam they differ from the restored state's).
 //! * The checkpoint is written to a temporary file and renamed when complete, so an interrupted
 //!   write never damages the previous one. A checkpoint of another scene or mesh is refused
 //!   (exit 2).

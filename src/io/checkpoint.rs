@@ -56,6 +56,10 @@
 //!   (step checkpoints of a dynamic stage only:)
 //!   velocity             f64 [n_nodes, 3]       velocity relative to the base (m/s)
 //!   acceleration         f64 [n_nodes, 3]       acceleration relative to the base (m/s²)
+//!   start_state_bytes,   u64 [n_elements],      the point states at the start of the stage, as
+//!   start_states         u8  [n_elements, w']   `state_bytes` and `states`: K₀ of Rayleigh
+//!                                               damping and the stage's modes are rebuilt from
+//!                                               them, as the uninterrupted run built them
 //! ```
 //!
 //! A step checkpoint (written after every converged load step that does not end a stage) has
@@ -165,18 +169,11 @@ pub fn write(
     )?;
     let refs: Vec<f64> = state.elem_ref.iter().flatten().copied().collect();
     file.write_table("/checkpoint/elem_ref", &element_plan, 24, &refs)?;
-    let lens: Vec<u64> = state.element_states.iter().map(|s| s.len() as u64).collect();
-    file.write_table("/checkpoint/state_bytes", &element_plan, 1, &lens)?;
-    let local_w = lens.iter().copied().max().unwrap_or(0);
-    let mut width = 0u64;
-    comm.all_reduce_into(&local_w, &mut width, mpi::collective::SystemOperation::max());
-    let width = width.max(1) as usize;
-    let mut packed = vec![0u8; width * state.element_states.len()];
-    for (row, s) in packed.chunks_mut(width).zip(&state.element_states) {
-        row[..s.len()].copy_from_slice(s);
-    }
-    file.write_table("/checkpoint/states", &element_plan, width, &packed)?;
+    write_states(&mut file, &comm, &element_plan, "", &state.element_states)?;
     if let Some(p) = &state.in_stage {
+        if let Some(start) = &p.start_states {
+            write_states(&mut file, &comm, &element_plan, "start_", start)?;
+        }
         file.write_table("/checkpoint/u_stage_start", &node_plan, 3, &p.u_stage_start)?;
         let was = flags(p.node_was_active.iter().copied());
         file.write_table("/checkpoint/node_was_active", &node_plan, 1, &was)?;
@@ -232,6 +229,42 @@ pub fn write(
             .verify_tables()
             .map(|_| ())
     })
+}
+
+/// Writes encoded element states as `/checkpoint/<prefix>state_bytes` (each element's length)
+/// and `/checkpoint/<prefix>states` (zero-padded to the longest). Collective.
+fn write_states(
+    file: &mut ResultsFile,
+    comm: &SimpleCommunicator,
+    plan: &Redistribution,
+    prefix: &str,
+    states: &[Vec<u8>],
+) -> Result<(), IoError> {
+    let lens: Vec<u64> = states.iter().map(|s| s.len() as u64).collect();
+    file.write_table(&format!("/checkpoint/{prefix}state_bytes"), plan, 1, &lens)?;
+    let local_w = lens.iter().copied().max().unwrap_or(0);
+    let mut width = 0u64;
+    comm.all_reduce_into(&local_w, &mut width, mpi::collective::SystemOperation::max());
+    let width = width.max(1) as usize;
+    let mut packed = vec![0u8; width * states.len()];
+    for (row, s) in packed.chunks_mut(width).zip(states) {
+        row[..s.len()].copy_from_slice(s);
+    }
+    file.write_table(&format!("/checkpoint/{prefix}states"), plan, width, &packed)
+}
+
+/// Unpacks the encoded states written by [`write_states`], checking them against the number
+/// of elements `ne`; `what` names them in the error.
+fn unpack_states(lens: &[u64], packed: &[u8], ne: usize, what: &str) -> Result<Vec<Vec<u8>>, String> {
+    let width = packed.len().checked_div(ne).unwrap_or(0);
+    if lens.len() != ne || packed.len() != width * ne || lens.iter().any(|&l| l as usize > width) {
+        return Err(format!("the stored {what} do not fit their lengths"));
+    }
+    Ok(lens
+        .iter()
+        .enumerate()
+        .map(|(i, &l)| packed[i * width..i * width + l as usize].to_vec())
+        .collect())
 }
 
 /// XXH3-64 (hex) of the `/checkpoint` attributes `name=value`, one per line in the order
@@ -365,7 +398,14 @@ pub fn read(
         } else {
             None
         };
-        Some((start, was, path, rates))
+        let start_states = match reader.shape("/checkpoint/start_states") {
+            Ok(_) => Some((
+                reader.read_owned::<u64>("/checkpoint/start_state_bytes", &element_plan)?,
+                reader.read_owned::<u8>("/checkpoint/start_states", &element_plan)?,
+            )),
+            Err(_) => None,
+        };
+        Some((start, was, path, rates, start_states))
     } else {
         None
     };
@@ -375,13 +415,10 @@ pub fn read(
         let offsets = sized("node_offset", offsets, 3 * nn)?;
         let refs = sized("elem_ref", refs, 24 * ne)?;
         let bad = |m: &str| IoError::Layout(format!("{}: {m}", path.display()));
-        if lens.len() != ne || node_active.len() as u64 != n_nodes {
-            return Err(bad("state lengths or node flags do not fit the mesh"));
+        if node_active.len() as u64 != n_nodes {
+            return Err(bad("the node flags do not fit the mesh"));
         }
-        let width = packed.len().checked_div(ne).unwrap_or(0);
-        if packed.len() != width * ne || lens.iter().any(|&l| l as usize > width) {
-            return Err(bad("the stored states do not fit their lengths"));
-        }
+        let element_states = unpack_states(&lens, &packed, ne, "states").map_err(|m| bad(&m))?;
         if active_block.len() < scene.mesh.blocks.len() {
             return Err(bad("fewer block flags than blocks"));
         }
@@ -389,7 +426,7 @@ pub fn read(
             .map_err(|e| bad(&format!("the stored solver counters do not parse ({e})")))?;
         let in_stage = match progress {
             None => None,
-            Some((start, was, path, rates)) => {
+            Some((start, was, path, rates, start_states)) => {
                 let stage = &scene.stages[stages_done];
                 let fits = path.len() == 3
                     && (0.0..stage.t_end()).contains(&path[0])
@@ -423,6 +460,10 @@ pub fn read(
                     ),
                     u_stage_start: sized("u_stage_start", start, 3 * nn)?,
                     node_was_active: was.iter().map(|&f| f != 0).collect(),
+                    start_states: match start_states {
+                        Some((l, p)) => Some(unpack_states(&l, &p, ne, "start states").map_err(|m| bad(&m))?),
+                        None => None,
+                    },
                 })
             }
         };
@@ -438,11 +479,7 @@ pub fn read(
             f_prev,
             node_offset: offsets.chunks(3).map(|c| [c[0], c[1], c[2]]).collect(),
             elem_ref: refs.chunks(24).map(|c| std::array::from_fn(|k| c[k])).collect(),
-            element_states: lens
-                .iter()
-                .enumerate()
-                .map(|(i, &l)| packed[i * width..i * width + l as usize].to_vec())
-                .collect(),
+            element_states,
         };
         Ok((state, report))
     })();

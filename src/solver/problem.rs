@@ -41,6 +41,10 @@ pub struct Problem<'a> {
     pub(super) u_stage_start: Vec<f64>,
     /// The modes of the current stage's start state, when the stage asks for a modal analysis.
     pub(super) modes: Option<super::modal::Modes>,
+    /// Encoded point states of the owned elements at the start of a dynamic stage: K₀ of
+    /// Rayleigh damping and the stage's modes are those of this state, so a restart from a step
+    /// checkpoint rebuilds them from it (`None` in a static stage).
+    pub(super) start_states: Option<Vec<Vec<u8>>>,
 }
 
 impl<'a> Problem<'a> {
@@ -71,6 +75,7 @@ impl<'a> Problem<'a> {
             node_offset: vec![[0.0; 3]; n_owned_nodes],
             node_was_active: vec![false; n_owned_nodes],
             u_stage_start: Vec::new(),
+            start_states: None,
             modes: None,
         })
     }

@@ -29,6 +29,10 @@ impl Problem<'_> {
             None => None,
         };
         self.integrator = self.integrator_for_stage()?;
+        self.start_states = match self.scene.stages[k].dynamic {
+            Some(_) => Some(self.model.encode_states()?),
+            None => None,
+        };
         Ok(())
     }
 
@@ -97,17 +101,46 @@ impl Problem<'_> {
         self.node_was_active.clone_from(&progress.node_was_active);
         self.u_stage_start.clone_from(&progress.u_stage_start);
         self.fix_for_stage()?;
-        // the modes of the restored state (for damping on modes: the start state's for an
-        // elastic model; a softened model's differ, so such a restart is not bitwise)
+        match &progress.start_states {
+            Some(start) => self.at_start_states(start, Self::stage_operators)?,
+            // a checkpoint without the stage's start states: the modes and K₀ of the restored
+            // state, which differ from the start state's for a softened model
+            None => self.stage_operators()?,
+        }
+        if let Some(rates) = &progress.rates {
+            self.integrator.restore_rates(&self.model.u_committed, rates)?;
+        }
+        Ok(())
+    }
+
+    /// The modes (when the stage asks for them) and the time integrator of the current stage,
+    /// at the model's present states. Collective.
+    fn stage_operators(&mut self) -> Result<(), SolveError> {
         self.modes = match self.scene.stages[self.stage].modal {
             Some(request) => Some(self.modal_analysis(request)?),
             None => None,
         };
         self.integrator = self.integrator_for_stage()?;
-        if let Some(rates) = &progress.rates {
-            self.integrator.restore_rates(&self.model.u_committed, rates)?;
-        }
         Ok(())
+    }
+
+    /// Runs `build` with the point states `start` (evaluated elements, encoded) in place of the
+    /// committed ones, which are put back afterwards; keeps `start` (owned elements) for the
+    /// next step checkpoints. Collective.
+    fn at_start_states(
+        &mut self,
+        start: &[Vec<u8>],
+        build: fn(&mut Self) -> Result<(), SolveError>,
+    ) -> Result<(), SolveError> {
+        let committed = self.model.blocks.clone();
+        let decoded = crate::parallel::any_error(self.comm, self.model.decode_states(start))
+            .map_err(|m| SolveError::Collective(format!("the stage's start states: {m}")));
+        let built = decoded.and_then(|()| {
+            self.start_states = Some(self.model.encode_states()?);
+            build(self)
+        });
+        self.model.blocks = committed;
+        built
     }
 
     /// A fresh preconditioner (after a step checkpoint: the steps that follow do not depend on
@@ -163,6 +196,7 @@ impl Problem<'_> {
             u_stage_start: self.u_stage_start.clone(),
             node_was_active: self.node_was_active.clone(),
             rates,
+            start_states: self.start_states.clone(),
         });
         Ok(ProblemState {
             stages_done: if within.is_some() {

@@ -16,6 +16,10 @@ pub struct StageProgress {
     pub node_was_active: Vec<bool>,
     /// Velocity and acceleration of a dynamic stage (`None` in a static stage).
     pub rates: Option<Rates>,
+    /// Encoded point states at the start of a dynamic stage, from which K₀ of Rayleigh damping
+    /// and the stage's modes are rebuilt (owned elements when saved, evaluated ones when read
+    /// back; `None` in a static stage and in checkpoints written before they were stored).
+    pub start_states: Option<Vec<Vec<u8>>>,
 }
 
 /// The state of the problem on one rank at the end of a stage or step, in this rank's owned

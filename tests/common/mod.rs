@@ -263,8 +263,17 @@ pub fn time_in_second_stage(ckpt: &Path) -> Option<f64> {
     (done == 1).then(|| path[0])
 }
 
+/// The time reached in a dynamic stage by the step checkpoint `ckpt` (`None` before there is
+/// one).
+pub fn time_in_dynamic_stage(ckpt: &Path) -> Option<f64> {
+    let f = hdf5::File::open(ckpt).ok()?;
+    f.dataset("checkpoint/velocity").ok()?;
+    let path = f.dataset("checkpoint/load_path").ok()?.read_raw::<f64>().ok()?;
+    path.first().copied()
+}
+
 /// Runs `scene` on 2 ranks in `dir` into `out` (restarting from `restart` if given) and kills
-/// it once its step checkpoint is past `t_kill` s of the second stage.
+/// it once its step checkpoint is past `t_kill` s of its dynamic stage.
 pub fn run_and_kill(dir: &Path, scene: &str, out: &str, restart: Option<&str>, t_kill: f64) {
     let mut args = vec!["run", scene, "-o", out, "-q"];
     if let Some(r) = restart {
@@ -273,7 +282,7 @@ pub fn run_and_kill(dir: &Path, scene: &str, out: &str, restart: Option<&str>, t
     let mut child = cfrd_mpi_spawn(2, dir, &args);
     let ckpt = dir.join(out).join("checkpoint.h5");
     let t0 = std::time::Instant::now();
-    while time_in_second_stage(&ckpt).is_none_or(|t| t < t_kill) {
+    while time_in_dynamic_stage(&ckpt).is_none_or(|t| t < t_kill) {
         assert!(
             child.try_wait().unwrap().is_none(),
             "{out}: the run ended before t = {t_kill} s"
