@@ -834,8 +834,8 @@ impl Snes {
         call!(SNESSetFromOptions(s.raw))
     }
 
-    /// Numeric factorizations of the canonical direct solver since the last call (0 with the
-    /// Krylov defaults).
+    /// Numeric factorizations of the direct solvers since the last call: the canonical LU's,
+    /// one per Newton iteration with the distributed LU, 0 with the Krylov defaults.
     pub fn take_factorizations(&mut self) -> u64 {
         let current = self
             .canonical_lu
@@ -867,6 +867,10 @@ impl Snes {
         let (mut reason, mut its) = (0, 0);
         call!(SNESGetConvergedReason(self.raw, &mut reason))?;
         call!(SNESGetIterationNumber(self.raw, &mut its))?;
+        if matches!(self.method, LinearMethod::DistributedLu) {
+            // every Newton iteration's Jacobian is factored afresh (MUMPS, no reuse)
+            self.factorizations += its as u64;
+        }
         let outcome = match reason {
             r if r > 0 => SnesOutcome::Converged,
             p::SNES_DIVERGED_FUNCTION_DOMAIN => SnesOutcome::DomainError,
