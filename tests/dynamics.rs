@@ -385,6 +385,25 @@ fn killed_twice_restarts_bitwise(dynamic: &str) {
     );
 }
 
+/// Writes `dam.yaml` and `record.csv` into `d`: the small generated dam (elastic fill, the GP
+/// interface, canonical LU) and, after its schedule, a quake of `duration` s (3 Hz, 4 m/s²)
+/// with Rayleigh damping, fields every `every` steps; `output` is an extra scene line.
+fn gp_interface_dam_quake(d: &Path, duration: f64, output: &str, every: u32) {
+    write_record(d, 0.01, duration, |t| 4.0 * (2.0 * PI * 3.0 * t).sin());
+    let quake = format!(
+        "{output}earthquake: {{ record: record.csv, damping: {{ ratio: 0.05, frequencies: [1.0, 5.0] }}, output_every: {every} }}"
+    );
+    let yaml = small_dam(
+        "{ model: elastic, young: 3.0e8, poisson: 0.3, density: 2150.0 }",
+        "gp_interface",
+        2400.0,
+        "",
+        "{ newton_tol: 1.0e-5, newton_max_iterations: 15, linear_solver: canonical_lu }",
+        &quake,
+    );
+    std::fs::write(d.join("dam.yaml"), yaml).unwrap();
+}
+
 /// The small generated dam (elastic fill, the GP interface, canonical LU) through its schedule
 /// and a short strong quake, on 1 and 2 ranks: the same results bit for bit. The
 /// products with M and K₀ are summed in the mesh's DOF order (`CanonicalProduct`); with
@@ -395,16 +414,7 @@ fn a_plastic_dam_quake_is_the_same_bit_for_bit_on_1_and_2_ranks() {
     let _turn = mpi_turn();
     let dir = tempdir();
     let d = dir.path();
-    write_record(d, 0.01, 0.3, |t| 4.0 * (2.0 * PI * 3.0 * t).sin());
-    let yaml = small_dam(
-        "{ model: elastic, young: 3.0e8, poisson: 0.3, density: 2150.0 }",
-        "gp_interface",
-        2400.0,
-        "",
-        "{ newton_tol: 1.0e-5, newton_max_iterations: 15, linear_solver: canonical_lu }",
-        "earthquake: { record: record.csv, damping: { ratio: 0.05, frequencies: [1.0, 5.0] }, output_every: 10 }",
-    );
-    std::fs::write(d.join("dam.yaml"), yaml).unwrap();
+    gp_interface_dam_quake(d, 0.3, "", 10);
     for (np, out) in [(2, "out2"), (1, "out1")] {
         let o = cfrd_mpi(np, d, &["run", "dam.yaml", "-o", out, "-q"]);
         assert!(o.status.success(), "{np} rank(s): {}", text(&o));
@@ -429,17 +439,7 @@ fn a_plastic_dam_quake_killed_twice_restarts_bitwise() {
     let _turn = mpi_turn();
     let dir = tempdir();
     let d = dir.path();
-    write_record(d, 0.01, 0.6, |t| 4.0 * (2.0 * PI * 3.0 * t).sin());
-    let yaml = small_dam(
-        "{ model: elastic, young: 3.0e8, poisson: 0.3, density: 2150.0 }",
-        "gp_interface",
-        2400.0,
-        "",
-        "{ newton_tol: 1.0e-5, newton_max_iterations: 15, linear_solver: canonical_lu }",
-        "output: { checkpoint: step }\n\
-         earthquake: { record: record.csv, damping: { ratio: 0.05, frequencies: [1.0, 5.0] }, output_every: 5 }",
-    );
-    std::fs::write(d.join("dam.yaml"), yaml).unwrap();
+    gp_interface_dam_quake(d, 0.6, "output: { checkpoint: step }\n", 5);
     let o = cfrd_mpi(2, d, &["run", "dam.yaml", "-o", "full", "-q"]);
     assert!(o.status.success(), "{}", text(&o));
     common::run_and_kill(d, "dam.yaml", "k1", None, 0.15);
