@@ -94,7 +94,9 @@ blocks:
   fill_*_cushion: { material: cushion }
   fill_*_transition: { material: transition }
   fill_*_rockfill: { material: rockfill }
-  slab_*: { material: slab }
+  # one hexahedron through the slab's thickness: incompatible modes, or it locks in bending
+  # (spec seismic section 4 item 6; tests/modal.rs, cfrd::element::hex8_modes)
+  slab_*: { material: slab, element: incompatible_modes }
   interface_*: { material: interface }
   joint_*: { material: joint }
 boundary:

@@ -69,7 +69,7 @@
 //! | `mesh` | one of `file` (Gmsh MSH 4.1 or 2.2; physical volumes are blocks, physical surfaces face sets, [`crate::mesh::gmsh`]), `box`, `dam` (a prismatic dam section) or `cfrd` (the [CFRD generator](#the-cfrd-generator-and-the-seed-scenes)) |
 //! | `partition` | a partition file from `cfrd partition`; METIS runs at start-up otherwise |
 //! | `materials` | materials by name, each with `model:` and its parameters ([materials](#materials)) |
-//! | `blocks` | every mesh block with its `material`; interface blocks also take `orientation`, `rule` and `initial_normal_stress`. A key with `*` is a pattern (`fill_*_cushion`) for the blocks without an exact key |
+//! | `blocks` | every mesh block with its `material`; interface blocks also take `orientation`, `rule` and `initial_normal_stress`; elastic blocks of hexahedra take `element: incompatible_modes` (the face slab with one element through its thickness, which the trilinear default locks in bending; [`crate::element::hex8_modes`]). A key with `*` is a pattern (`fill_*_cushion`) for the blocks without an exact key |
 //! | `boundary` | `{ set, fix: [x, y, z], value }` on node sets (prescribed displacement, zero by default) |
 //! | `loads` | `gravity: { g }`, `pressure: [ { faces, value } ]`, `hydrostatic: [ { faces, level, unit_weight } ]` (γ_w 9810 N/m³ by default) |
 //! | `stages` | construction and loading stages in order: `{ name, activate: [blocks], loads, load_steps }`, plus `dynamic` ([dynamic stages](#dynamic-stages-and-earthquakes)) and `modal` ([modal analysis](#modal-analysis)); placed blocks start strain-free at zero stress. Without stages the scene is one stage (a `mesh.cfrd` scene runs the generator's schedule) |
@@ -270,12 +270,14 @@
 //!   (faster from the medium mesh up, with the serial OpenBLAS that `ci/install-deps.sh`
 //!   installs).
 //! * `linear_solver: distributed_lu`: MUMPS's LU of the distributed matrix, factored by all
-//!   ranks together, at every Jacobian. Each rank holds only its share of the factors, so a
-//!   mesh whose factors do not fit one rank's memory can use more ranks (or nodes). Results agree
-//!   with the canonical LU's, and between rank counts and runs, to the factorization's rounding,
-//!   not bit for bit: MUMPS's parallel factorization sums in an order that depends on message
-//!   timing. MUMPS's own options take the usual prefix (`-mat_mumps_icntl_14 50` for more
-//!   working memory).
+//!   ranks together. Each rank holds only its share of the matrix and the factors, so a mesh
+//!   whose factors do not fit one rank's memory can use more ranks (or nodes). The factors are
+//!   reused across Jacobians as with the canonical LU (`reuse_factorization`;
+//!   [`crate::linalg::lagged_lu`]). Results agree with the canonical LU's, and between rank
+//!   counts and runs, to the factorization's rounding, not bit for bit: MUMPS's parallel
+//!   factorization sums in an order that depends on message timing. Its options take the
+//!   prefix `distributed_` (`-distributed_mat_mumps_icntl_14 50` for more working memory,
+//!   `-distributed_refactor_after 4`).
 //!
 //! PETSc options go into `solver.petsc_options`, or follow the command: every single-dash word
 //! with more than one letter is a PETSc option, taking the next word as its value unless that

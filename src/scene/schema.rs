@@ -2,6 +2,7 @@
 //! prints the JSON Schema generated from these types, so editors can validate and complete
 //! scene files and this documentation cannot fall out of date.
 
+use crate::element::hex8_modes::SolidElement;
 use crate::element::interface8::InterfaceRule;
 use crate::material::MaterialParams;
 pub use crate::mesh::cfrd::CfrdSpec;
@@ -107,6 +108,10 @@ pub struct BlockSpec {
     /// the block is placed (spec (E9), gap G5; default 0: placed without stress, like the fill).
     #[serde(default)]
     pub initial_normal_stress: Option<f64>,
+    /// Solid blocks: the hexahedron, `trilinear` (default) or `incompatible_modes` (an elastic
+    /// block only; the face slab with one element through its thickness, spec seismic §4 item 6).
+    #[serde(default)]
+    pub element: Option<SolidElement>,
 }
 
 /// Displacement component.
@@ -285,10 +290,10 @@ pub struct SolverSpec {
     /// count (`linalg::petsc::CanonicalLu`; up to some 10⁵ DOFs).
     #[serde(default)]
     pub linear_solver: LinearSolver,
-    /// With `canonical_lu`: keep the factors of an earlier Jacobian of the same stage as the
-    /// preconditioner of GMRES on the current one, and factor again only when GMRES needs more
-    /// than a few iterations (`linalg::petsc::CanonicalLu`). Default true; `false` factors every
-    /// Jacobian (an exact direct solve per Newton iteration).
+    /// With `canonical_lu` or `distributed_lu`: keep the factors of an earlier Jacobian of the
+    /// same stage as the preconditioner of GMRES on the current one, and factor again only when
+    /// GMRES needs more than a few iterations (`linalg::lagged_lu`). Default true; `false`
+    /// factors every Jacobian (an exact direct solve per Newton iteration).
     #[serde(default = "yes")]
     pub reuse_factorization: bool,
     /// Cap on the substepping tolerance STOL (spec §8.2) of every generalized-plasticity

@@ -401,3 +401,31 @@ fn a_device_is_not_read_as_a_scene() {
         "{err}"
     );
 }
+
+#[test]
+fn incompatible_modes_are_taken_for_elastic_blocks_and_refused_elsewhere_naming_the_block() {
+    use crate::element::hex8_modes::SolidElement;
+    let scene =
+        box_scene("  layer_1: { material: a, element: incompatible_modes }\n  layer_*: { material: b }\n")
+            .expect("scene");
+    assert_eq!(
+        scene.block_element,
+        [
+            SolidElement::IncompatibleModes,
+            SolidElement::Trilinear,
+            SolidElement::Trilinear
+        ]
+    );
+    let text = "name: t\nunits: SI\nmesh: { box: { divisions: [1, 1, 1], layers: 1 } }\n\
+                materials:\n  fill: { model: rockfill_gp }\n\
+                blocks:\n  layer_1: { material: fill, element: incompatible_modes }\n"
+        .to_string()
+        + FIXED_BASE;
+    let err = message(Scene::from_str(&text, "t.yaml", Path::new(".")));
+    assert!(
+        err.contains("blocks.layer_1.element") && err.contains("needs an elastic material"),
+        "{err}"
+    );
+    let err = message(box_scene("  layer_*: { material: a, element: quadratic }\n"));
+    assert!(err.contains("quadratic"), "{err}");
+}

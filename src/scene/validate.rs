@@ -5,9 +5,10 @@ use super::error::SceneError;
 use super::modal;
 use super::schema::{BlockSpec, HydrostaticSpec, LoadsSpec, MeshSource, SceneFile, SolverSpec, StageSpec};
 use super::term::Term;
+use crate::element::hex8_modes::SolidElement;
 use crate::element::interface8::{Interface8Geometry, InterfaceRule};
 use crate::element::interface_frame::FrameAxes;
-use crate::material::{BlockMaterial, MaterialParams};
+use crate::material::{BlockMaterial, MaterialParams, SolidParams};
 use crate::mesh::cfrd::{cfrd_mesh, CfrdStage};
 use crate::mesh::ElementKind;
 use crate::mesh::{generate, Mesh};
@@ -28,6 +29,8 @@ pub struct Scene {
     pub block_materials: Vec<BlockMaterial>,
     /// Options of every interface block (`None` for solid blocks; indexed like `mesh.blocks`).
     pub block_interface: Vec<Option<InterfaceBlock>>,
+    /// The hexahedron of every block (indexed like `mesh.blocks`; `trilinear` for interfaces).
+    pub block_element: Vec<SolidElement>,
     /// The stages, in order (one stage that places every block when the scene has none).
     pub stages: Vec<Stage>,
     /// Constrained DOFs: (node index, component, prescribed value), sorted and unique.
@@ -149,6 +152,7 @@ impl Scene {
             });
             block_materials.push(material);
         }
+        let block_element = block_elements(&block_specs, &block_materials, &inv)?;
         // every interface element must have a usable geometry for its block's orientation
         for (e, el) in mesh.elements.iter().enumerate() {
             if let Some(ib) = &block_interface[el.block as usize] {
@@ -285,12 +289,46 @@ impl Scene {
             mesh,
             block_materials,
             block_interface,
+            block_element,
             stages,
             fixed,
             hash: fnv1a(text.as_bytes()),
             base: base.to_path_buf(),
         })
     }
+}
+
+/// The hexahedron of every block: `element` is for solid blocks, and `incompatible_modes` for
+/// elastic ones only (the modes are condensed exactly for a constant D, `crate::element::hex8_modes`).
+fn block_elements(
+    block_specs: &[(&str, &BlockSpec)],
+    block_materials: &[BlockMaterial],
+    inv: &dyn Fn(&str, String) -> SceneError,
+) -> Result<Vec<SolidElement>, SceneError> {
+    let resolve = |((key, spec), material): (&(&str, &BlockSpec), &BlockMaterial)| {
+        let path = format!("blocks.{key}.element");
+        match (spec.element, material) {
+            (None, _) => Ok(SolidElement::Trilinear),
+            (Some(_), BlockMaterial::Interface(_)) => Err(inv(
+                &path,
+                "applies to blocks of solid elements only; this block has zero-thickness elements".into(),
+            )),
+            (Some(SolidElement::IncompatibleModes), BlockMaterial::Solid(p))
+                if !matches!(p, SolidParams::Elastic(_)) =>
+            {
+                Err(inv(
+                    &path,
+                    format!(
+                        "incompatible_modes needs an elastic material; '{}' is {}",
+                        spec.material,
+                        p.name()
+                    ),
+                ))
+            }
+            (Some(e), BlockMaterial::Solid(_)) => Ok(e),
+        }
+    };
+    block_specs.iter().zip(block_materials).map(resolve).collect()
 }
 
 /// Whether `name` matches the block pattern `pattern` (`*` matches any run of characters,

@@ -19,6 +19,7 @@ use super::report::InterfaceCounts;
 use super::solid::{SolidBlock, Vector24};
 use super::state_codec;
 use crate::element::hex8::Hex8Geometry;
+use crate::element::hex8_modes::{IncompatibleModes, SolidElement};
 use crate::element::interface8::Interface8Geometry;
 use crate::element::interface_frame::FrameAxes;
 use crate::linalg::petsc::{Gather, Matrix, Petsc, Vector};
@@ -125,7 +126,8 @@ impl<'a> Model<'a> {
         disc: Discretization,
     ) -> Result<Self, SolveError> {
         let mesh = &scene.mesh;
-        let (elem_block, blocks) = Self::blocks_of(scene, &disc)?;
+        let (elem_block, mut blocks) = Self::blocks_of(scene, &disc)?;
+        Self::attach_modes(scene, &disc, &elem_block, &mut blocks)?;
         let iface_geo = Self::interface_geometry(scene, &disc)?;
         let solid_geo = Self::solid_geometry(scene, &disc, &iface_geo)?;
         let (d_nnz, o_nnz) = disc.preallocation(cells, mesh.num_nodes());
@@ -193,6 +195,34 @@ impl<'a> Model<'a> {
             })
             .collect::<Result<Vec<_>, _>>()?;
         Ok((elem_block, blocks))
+    }
+
+    /// Gives the elements of the blocks that ask for them their incompatible modes
+    /// (`crate::element::hex8_modes`), in block-local order.
+    fn attach_modes(
+        scene: &Scene,
+        disc: &Discretization,
+        elem_block: &[(usize, usize)],
+        blocks: &mut [BlockStates],
+    ) -> Result<(), SolveError> {
+        let mesh = &scene.mesh;
+        let mut modes: Vec<Vec<IncompatibleModes>> = vec![Vec::new(); blocks.len()];
+        for (&e, &(b, _)) in disc.elements.iter().zip(elem_block) {
+            if scene.block_element[b] == SolidElement::IncompatibleModes {
+                let m = IncompatibleModes::new(&mesh.element_coords(e as usize)).map_err(|_| {
+                    SolveError::Geometry {
+                        element: mesh.elements[e as usize].id,
+                    }
+                })?;
+                modes[b].push(m);
+            }
+        }
+        for (block, m) in blocks.iter_mut().zip(modes) {
+            if let (BlockStates::Solid(solid), false) = (block, m.is_empty()) {
+                solid.attach_modes(m);
+            }
+        }
+        Ok(())
     }
 
     /// The geometry of every evaluated interface element (`None` for solids).

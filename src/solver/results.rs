@@ -86,10 +86,7 @@ impl Problem<'_> {
                 let geo = model.solid_geo[i]
                     .as_ref()
                     .expect("solid geometry built at set-up");
-                let eps = geo.strain_increments(ue);
-                strain = eps
-                    .iter()
-                    .fold(Strain6::default(), |a, s| Strain6(a.0 + s.0 / 8.0));
+                strain = block.mean_strain(be, geo, ue);
                 stress = block.mean_stress(be);
             }
             BlockStates::Interface(block) => {

@@ -4,12 +4,13 @@
 
 use super::qp_store::QpStore;
 use crate::element::hex8::Hex8Geometry;
+use crate::element::hex8_modes::{IncompatibleModes, Modes9};
 use crate::element::quadrature::HEX_GAUSS_POINTS;
 use crate::error::MaterialError;
 use crate::material::elastic::LinearElastic;
 use crate::material::rockfill_gp::RockfillGp;
 use crate::material::{SolidModel, SolidParams};
-use crate::tensor::{Stress6, Tangent6};
+use crate::tensor::{Strain6, Stress6, Tangent6};
 use nalgebra::{SMatrix, SVector};
 
 /// Element vector (24 DOFs).
@@ -27,6 +28,9 @@ pub struct ModelStates<M: SolidModel> {
     /// The tangent of every trial state (same layout as the store), so that a Jacobian at the
     /// point of the last residual evaluation needs no second integration.
     pub trial_tangents: Vec<Tangent6>,
+    /// The incompatible modes of every element (`crate::element::hex8_modes`), or empty for
+    /// the trilinear hexahedron.
+    pub modes: Vec<IncompatibleModes>,
 }
 
 /// The solid models a block can use, each with its states.
@@ -71,6 +75,7 @@ impl SolidBlock {
                     model,
                     store: QpStore::new(n, init),
                     trial_tangents: vec![Tangent6::default(); n],
+                    modes: Vec::new(),
                 })
             }
             SolidParams::RockfillGp(p) => {
@@ -81,6 +86,7 @@ impl SolidBlock {
                     model,
                     store: QpStore::new(n, init),
                     trial_tangents: vec![Tangent6::default(); n],
+                    modes: Vec::new(),
                 })
             }
         })
@@ -128,7 +134,7 @@ impl SolidBlock {
             let tan: [Tangent6; HEX_GAUSS_POINTS] = std::array::from_fn(|q| {
                 ms.model.elastic_tangent(&ms.store.committed[e * HEX_GAUSS_POINTS + q])
             });
-            geo.stiffness(&tan)
+            stiffness(ms, e, geo, &tan)
         })
     }
 
@@ -140,6 +146,31 @@ impl SolidBlock {
     /// Mean committed stress over the Gauss points of element `e` (block-local index).
     pub fn mean_stress(&self, e: usize) -> Stress6 {
         with_states!(self, ms => mean_committed_stress(ms, e))
+    }
+
+    /// Gives the block's elements (block-local order) incompatible modes
+    /// (`crate::element::hex8_modes`); the block must be elastic (the scene checks it).
+    pub fn attach_modes(&mut self, modes: Vec<IncompatibleModes>) {
+        with_states!(self, ms => ms.modes = modes)
+    }
+
+    /// Mean strain over the Gauss points of element `e` (block-local index) for the
+    /// displacement `ue` since its placement, with its modes' part when it has them (their
+    /// stress-free placement makes α = −K_αα⁻¹ K_αu u_e).
+    pub fn mean_strain(&self, e: usize, geo: &Hex8Geometry, ue: &Vector24) -> Strain6 {
+        let eps = with_states!(self, ms => match ms.modes.get(e) {
+            None => geo.strain_increments(ue),
+            Some(modes) => {
+                let tan: [Tangent6; HEX_GAUSS_POINTS] = std::array::from_fn(|q| {
+                    ms.model.elastic_tangent(&ms.store.committed[e * HEX_GAUSS_POINTS + q])
+                });
+                let alpha = modes.condense(geo, &tan).map_or(Modes9::zeros(), |c| c.modes(ue, &Modes9::zeros()));
+                modes.strain_increments(geo, ue, &alpha)
+            }
+        });
+        eps.iter().fold(Strain6::default(), |a, s| {
+            Strain6(a.0 + s.0 / HEX_GAUSS_POINTS as f64)
+        })
     }
 
     /// Accepts the trial states.
@@ -165,7 +196,20 @@ fn evaluate_element<M: SolidModel>(
     d_u: &Vector24,
     want_k: bool,
 ) -> Result<ElementResponse, MaterialError> {
-    let d_eps = geo.strain_increments(d_u);
+    let d_eps = match ms.modes.get(e) {
+        None => geo.strain_increments(d_u),
+        Some(modes) => {
+            let range = e * HEX_GAUSS_POINTS..(e + 1) * HEX_GAUSS_POINTS;
+            let committed = &ms.store.committed[range];
+            let tan: [Tangent6; HEX_GAUSS_POINTS] =
+                std::array::from_fn(|q| ms.model.elastic_tangent(&committed[q]));
+            let sig: [Stress6; HEX_GAUSS_POINTS] = std::array::from_fn(|q| M::stress(&committed[q]));
+            let d_alpha = modes
+                .condense(geo, &tan)
+                .map_or(Modes9::zeros(), |c| c.modes(d_u, &modes.residual(geo, &sig)));
+            modes.strain_increments(geo, d_u, &d_alpha)
+        }
+    };
     let mut sig = [Stress6::default(); HEX_GAUSS_POINTS];
     let mut tan = [Tangent6::default(); HEX_GAUSS_POINTS];
     for q in 0..HEX_GAUSS_POINTS {
@@ -179,9 +223,26 @@ fn evaluate_element<M: SolidModel>(
     let mean = mean_of(&sig);
     Ok(ElementResponse {
         f_int: geo.internal_force(&sig),
-        k: want_k.then(|| geo.stiffness(&tan)),
+        k: want_k.then(|| stiffness(ms, e, geo, &tan)),
         mean_stress: mean,
     })
+}
+
+/// The element stiffness at tangents `tan`: Σ Bᵀ D B dV, condensed when the element has
+/// incompatible modes. K_αα is positive definite for an elastic D (the only model the scene
+/// allows with the modes); were it singular, the modes would be left at rest (α = 0) and the
+/// element be the trilinear one, here and in [`evaluate_element`].
+fn stiffness<M: SolidModel>(
+    ms: &ModelStates<M>,
+    e: usize,
+    geo: &Hex8Geometry,
+    tan: &[Tangent6; HEX_GAUSS_POINTS],
+) -> Matrix24 {
+    let k = geo.stiffness(tan);
+    match ms.modes.get(e).and_then(|m| m.condense(geo, tan)) {
+        Some(c) => c.stiffness(&k),
+        None => k,
+    }
 }
 
 /// Average of the Gauss-point stresses of an element.
@@ -199,7 +260,7 @@ fn trial_response<M: SolidModel>(ms: &ModelStates<M>, e: usize, geo: &Hex8Geomet
     let mean = mean_of(&sig);
     ElementResponse {
         f_int: geo.internal_force(&sig),
-        k: Some(geo.stiffness(&tan)),
+        k: Some(stiffness(ms, e, geo, &tan)),
         mean_stress: mean,
     }
 }
