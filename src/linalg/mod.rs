@@ -2,5 +2,6 @@
 //! ([`slepc`]) solves the eigenproblems of the modal analysis.
 
 pub mod ffi;
+pub mod lagged_lu;
 pub mod petsc;
 pub mod slepc;

@@ -11,6 +11,7 @@
 #![allow(unsafe_code)]
 
 use super::ffi as p;
+use super::lagged_lu::{distributed_context, DistributedLu, LaggedLu, DISTRIBUTED_LU_NAME};
 use mpi::raw::AsRaw;
 use mpi::topology::SimpleCommunicator;
 use std::ffi::{c_char, CStr, CString};
@@ -668,18 +669,6 @@ fn configure_ksp(ksp: p::KSP, rtol: f64, max_it: u32, symmetric: bool) -> Result
     call!(KSPSetNormType(ksp, p::KSP_NORM_UNPRECONDITIONED))
 }
 
-/// MUMPS's LU on the distributed matrix under `preonly` ([`LinearMethod::DistributedLu`]).
-fn configure_distributed_lu(ksp: p::KSP) -> Result<(), PetscError> {
-    call!(KSPSetType(ksp, p::KSPPREONLY.as_ptr() as *const c_char))?;
-    let mut pc: p::PC = null_mut();
-    call!(KSPGetPC(ksp, &mut pc))?;
-    call!(PCSetType(pc, p::PCLU.as_ptr() as *const c_char))?;
-    call!(PCFactorSetMatSolverType(
-        pc,
-        p::MATSOLVERMUMPS.as_ptr() as *const c_char
-    ))
-}
-
 /// What a nonlinear problem gives PETSc's SNES: the residual F(x), the Jacobian J(x) and the
 /// convergence test. Every method is called collectively (on all ranks, in the same order).
 pub trait SnesProblem {
@@ -728,6 +717,8 @@ pub struct Snes {
     method: LinearMethod,
     /// The canonical direct solver's state (the PC shell's context); dropped after the SNES.
     canonical_lu: Option<Box<CanonicalLu>>,
+    /// The distributed direct solver's state (the PC shell's context); dropped after the SNES.
+    distributed_lu: Option<Box<DistributedLu>>,
     /// Factorizations of canonical solvers already dropped, not yet taken.
     factorizations: u64,
 }
@@ -739,11 +730,15 @@ pub enum LinearMethod {
     Krylov,
     /// The canonical direct solver ([`CanonicalLu`]): results independent of the rank count.
     Canonical(CanonicalSettings),
-    /// MUMPS's LU on the distributed matrix, factored by all ranks together (`preonly`; PETSc
-    /// options with the usual prefixes, e.g. `-mat_mumps_icntl_14`, change it): each rank
-    /// holds its share of the factors, so memory and work are split; results agree between
-    /// rank counts, and between runs, to the factorization's rounding only.
-    DistributedLu,
+    /// MUMPS's LU on the distributed matrix, factored by all ranks together
+    /// ([`DistributedLu`]): each rank holds its share of the factors, so memory and work are
+    /// split; results agree between rank counts, and between runs, to the factorization's
+    /// rounding only.
+    DistributedLu {
+        /// Keep the factors of an earlier Jacobian as the preconditioner of GMRES while it
+        /// converges quickly (`solver.reuse_factorization`); `false` factors every Jacobian.
+        reuse_factorization: bool,
+    },
 }
 
 /// Settings of the canonical direct solver ([`CanonicalLu`]).
@@ -775,6 +770,7 @@ impl Snes {
             settings: (max_it, rtol, ksp_max_it, symmetric),
             method,
             canonical_lu: None,
+            distributed_lu: None,
             factorizations: 0,
         };
         s.configure()?;
@@ -797,6 +793,7 @@ impl Snes {
         // the old shell context goes only now that no PC refers to it
         self.factorizations = self.take_factorizations();
         self.canonical_lu = None;
+        self.distributed_lu = None;
         self.configure()
     }
 
@@ -807,6 +804,9 @@ impl Snes {
                 canonical.dofs.clone(),
                 canonical.reuse_factorization,
             )?);
+        }
+        if let LinearMethod::DistributedLu { reuse_factorization } = &self.method {
+            self.distributed_lu = Some(DistributedLu::new(self.comm, *reuse_factorization)?);
         }
         let s = &*self;
         let (max_it, rtol, ksp_max_it, symmetric) = self.settings;
@@ -825,23 +825,27 @@ impl Snes {
         ))?;
         let mut ksp: p::KSP = null_mut();
         call!(SNESGetKSP(s.raw, &mut ksp))?;
-        match (&s.canonical_lu, &s.method) {
+        match (&s.canonical_lu, &s.distributed_lu) {
             (Some(lu), _) => lu.install(ksp)?,
-            (None, LinearMethod::DistributedLu) => configure_distributed_lu(ksp)?,
-            (None, _) => configure_ksp(ksp, rtol, ksp_max_it, symmetric)?,
+            (None, Some(lu)) => lu.install(ksp)?,
+            (None, None) => configure_ksp(ksp, rtol, ksp_max_it, symmetric)?,
         }
         // options (scene and command line) are applied here, so a bad one is an input error
         call!(SNESSetFromOptions(s.raw))
     }
 
-    /// Numeric factorizations of the direct solvers since the last call: the canonical LU's,
-    /// one per Newton iteration with the distributed LU, 0 with the Krylov defaults.
+    /// Numeric factorizations of the direct solvers since the last call (0 with the Krylov
+    /// defaults).
     pub fn take_factorizations(&mut self) -> u64 {
-        let current = self
+        let canonical = self
             .canonical_lu
             .as_mut()
+            .map_or(0, |lu| lu.inner.take_factorizations());
+        let distributed = self
+            .distributed_lu
+            .as_mut()
             .map_or(0, |lu| lu.take_factorizations());
-        std::mem::take(&mut self.factorizations) + current
+        std::mem::take(&mut self.factorizations) + canonical + distributed
     }
 
     /// Solves F(x) = 0 from the initial guess in `x`, with `r` as the residual work vector.
@@ -867,10 +871,6 @@ impl Snes {
         let (mut reason, mut its) = (0, 0);
         call!(SNESGetConvergedReason(self.raw, &mut reason))?;
         call!(SNESGetIterationNumber(self.raw, &mut its))?;
-        if matches!(self.method, LinearMethod::DistributedLu) {
-            // every Newton iteration's Jacobian is factored afresh (MUMPS, no reuse)
-            self.factorizations += its as u64;
-        }
         let outcome = match reason {
             r if r > 0 => SnesOutcome::Converged,
             p::SNES_DIVERGED_FUNCTION_DOMAIN => SnesOutcome::DomainError,
@@ -997,41 +997,17 @@ pub struct CanonicalLu {
     reduced_index: Vec<i32>,
     /// Diagonal in canonical order (the solution of a decoupled row is b_i / a_ii).
     diagonal: Vec<f64>,
-    ksp: p::KSP,
+    /// The inner sequential LU (its factors possibly those of an earlier Jacobian).
+    inner: LaggedLu,
     rhs: Option<Vector>,
     solution: Option<Vector>,
-    /// Keep the factors of an earlier Jacobian of the same coupled set as the preconditioner of
-    /// GMRES on the current one (see [`CanonicalLu`]); `false`: factor every Jacobian.
-    reuse: bool,
-    /// The factors in use are those of an earlier Jacobian.
-    lagged: bool,
-    /// Factor at the next set-up (the last solve with lagged factors was slow, or the last
-    /// factorization failed).
-    refactor: bool,
-    /// Numeric factorizations not yet taken by [`CanonicalLu::take_factorizations`].
-    factorizations: u64,
-    /// Krylov iterations of the last solve (1 for a direct solve).
-    last_iterations: u32,
-    /// Refactor at the next Jacobian after a solve with more GMRES iterations than this.
-    refactor_after: i32,
 }
-
-/// Lagged factors are replaced at the next Jacobian once a solve needed more than this many
-/// GMRES iterations (each costs a forward and a backward substitution and a product with the
-/// coupled block); `-canonical_refactor_after N` overrides.
-const REFACTOR_AFTER_ITERATIONS: i32 = 8;
-/// GMRES with lagged factors gives up after this many iterations; the current Jacobian is then
-/// factored and the solve repeated (`-canonical_ksp_max_it` overrides).
-const LAGGED_MAX_ITERATIONS: i32 = 30;
-/// Relative tolerance of GMRES with lagged factors on the unpreconditioned residual of the
-/// coupled block (`-canonical_ksp_rtol` overrides): well below the Newton tolerances of
-/// spec §8.1 (1e-4 typical, 1e-5 in the seed scenes), so Newton converges as with exact
-/// corrections.
-const LAGGED_RTOL: f64 = 1e-9;
 
 impl CanonicalLu {
     fn new(canonical: Vec<i32>, reuse: bool) -> Result<Box<CanonicalLu>, PetscError> {
-        let mut lu = Box::new(CanonicalLu {
+        // SAFETY: a constant handle set by MPI_Init.
+        let self_comm = unsafe { mpi::ffi::RSMPI_COMM_SELF };
+        Ok(Box::new(CanonicalLu {
             canonical,
             flags: None,
             diag: None,
@@ -1044,52 +1020,10 @@ impl CanonicalLu {
             reduced: null_mut(),
             reduced_index: Vec::new(),
             diagonal: Vec::new(),
-            ksp: null_mut(),
+            inner: LaggedLu::new(self_comm, "canonical_", reuse, None)?,
             rhs: None,
             solution: None,
-            reuse,
-            lagged: false,
-            refactor: false,
-            factorizations: 0,
-            last_iterations: 0,
-            refactor_after: REFACTOR_AFTER_ITERATIONS,
-        });
-        let (name, mut set) = (
-            CString::new("-canonical_refactor_after").expect("no NUL"),
-            p::PETSC_FALSE,
-        );
-        call!(PetscOptionsGetInt(
-            null_mut(),
-            null(),
-            name.as_ptr(),
-            &mut lu.refactor_after,
-            &mut set
-        ))?;
-        // SAFETY: a constant handle set by MPI_Init.
-        let self_comm = unsafe { mpi::ffi::RSMPI_COMM_SELF };
-        call!(KSPCreate(self_comm, &mut lu.ksp))?;
-        let prefix = CString::new("canonical_").expect("no NUL");
-        call!(KSPSetOptionsPrefix(lu.ksp, prefix.as_ptr()))?;
-        if reuse {
-            call!(KSPSetType(lu.ksp, p::KSPGMRES.as_ptr() as *const c_char))?;
-            call!(KSPGMRESSetRestart(lu.ksp, LAGGED_MAX_ITERATIONS))?;
-            call!(KSPSetPCSide(lu.ksp, p::PC_RIGHT))?;
-            call!(KSPSetNormType(lu.ksp, p::KSP_NORM_UNPRECONDITIONED))?;
-            call!(KSPSetTolerances(
-                lu.ksp,
-                LAGGED_RTOL,
-                1e-300,
-                1e30,
-                LAGGED_MAX_ITERATIONS
-            ))?;
-        } else {
-            call!(KSPSetType(lu.ksp, p::KSPPREONLY.as_ptr() as *const c_char))?;
-        }
-        let mut pc: p::PC = null_mut();
-        call!(KSPGetPC(lu.ksp, &mut pc))?;
-        call!(PCSetType(pc, p::PCLU.as_ptr() as *const c_char))?;
-        call!(KSPSetFromOptions(lu.ksp))?;
-        Ok(lu)
+        }))
     }
 
     /// Makes `ksp` apply this solver (`preonly` with the shell preconditioner).
@@ -1138,7 +1072,7 @@ impl CanonicalLu {
             call!(MatPermute(*self.sub, self.is_perm, self.is_perm, &mut b))?;
             if self.reduced.is_null() {
                 self.reduced = b;
-                call!(KSPSetOperators(self.ksp, self.reduced, self.reduced))?;
+                call!(KSPSetOperators(self.inner.ksp, self.reduced, self.reduced))?;
             } else {
                 let copied = call!(MatCopy(b, self.reduced, p::SAME_NONZERO_PATTERN));
                 // SAFETY: created by MatPermute above, destroyed once.
@@ -1148,8 +1082,8 @@ impl CanonicalLu {
                 copied?;
             }
             // a new coupled set (a new stage) is always factored
-            let fresh = !self.reuse || self.refactor || block == p::MAT_INITIAL_MATRIX;
-            failed = self.factor(!fresh)?;
+            let fresh = self.inner.wants_factors() || block == p::MAT_INITIAL_MATRIX;
+            failed = self.inner.factor(!fresh)?;
         }
         if failed != 0 || singular {
             // a zero pivot: the Newton step fails as a linear solve and is cut back
@@ -1287,59 +1221,13 @@ impl CanonicalLu {
         Ok(())
     }
 
-    /// Sets up the inner solver on the current coupled block: keeps the factors of an earlier
-    /// Jacobian when `lagged`, factors the block otherwise. Returns PETSc's failure reason of
-    /// the factorization (0: none).
-    fn factor(&mut self, lagged: bool) -> Result<p::PCFailedReason, PetscError> {
-        let mut inner: p::PC = null_mut();
-        call!(KSPGetPC(self.ksp, &mut inner))?;
-        let keep = if lagged { p::PETSC_TRUE } else { p::PETSC_FALSE };
-        call!(PCSetReusePreconditioner(inner, keep))?;
-        call!(KSPSetUp(self.ksp))?;
-        let mut failed: p::PCFailedReason = 0;
-        if !lagged {
-            self.factorizations += 1;
-            self.refactor = false;
-            call!(PCGetFailedReason(inner, &mut failed))?;
-        }
-        self.lagged = lagged;
-        // factors that failed are never kept for a later Jacobian
-        self.refactor |= failed != 0;
-        Ok(failed)
-    }
-
-    /// Solves the coupled block into `solution` from `rhs`: with lagged factors, GMRES
-    /// preconditioned by them; when it does not converge, the current block is factored and the
-    /// solve repeated. Returns whether the solve succeeded.
+    /// Solves the coupled block into `solution` from `rhs` ([`LaggedLu::solve`]). Returns
+    /// whether the solve succeeded.
     fn solve_coupled(&mut self) -> Result<bool, PetscError> {
         let (Some(rhs), Some(solution)) = (self.rhs.as_ref(), self.solution.as_ref()) else {
             unreachable!("set up before the first solve");
         };
-        let (rhs, solution) = (rhs.raw, solution.raw);
-        let (mut reason, mut its) = (0, 0);
-        call!(KSPSolve(self.ksp, rhs, solution))?;
-        call!(KSPGetConvergedReason(self.ksp, &mut reason))?;
-        call!(KSPGetIterationNumber(self.ksp, &mut its))?;
-        let mut total = its;
-        if reason < 0 && self.lagged {
-            if self.factor(false)? != 0 {
-                self.last_iterations = total as u32;
-                return Ok(false);
-            }
-            call!(KSPSolve(self.ksp, rhs, solution))?;
-            call!(KSPGetConvergedReason(self.ksp, &mut reason))?;
-            call!(KSPGetIterationNumber(self.ksp, &mut its))?;
-            total += its;
-        } else if self.lagged && its > self.refactor_after {
-            self.refactor = true;
-        }
-        self.last_iterations = total.max(1) as u32;
-        Ok(reason >= 0)
-    }
-
-    /// Numeric factorizations since the last call.
-    fn take_factorizations(&mut self) -> u64 {
-        std::mem::take(&mut self.factorizations)
+        self.inner.solve(rhs.raw, solution.raw)
     }
 
     /// y = A⁻¹ x through the canonical factors.
@@ -1386,7 +1274,6 @@ impl Drop for CanonicalLu {
                 p::MatDestroySubMatrices(1, &mut self.sub);
             }
             p::MatDestroy(&mut self.reduced);
-            p::KSPDestroy(&mut self.ksp);
             p::ISDestroy(&mut self.is_rows);
             p::ISDestroy(&mut self.is_perm);
         }
@@ -1423,13 +1310,40 @@ unsafe extern "C" fn canonical_lu_apply(pc: p::PC, x: p::Vec, y: p::Vec) -> p::P
     }
 }
 
+/// Krylov iterations of the last solve of one of cfrd's preconditioner shells, told apart by
+/// the name they report.
+///
+/// # Safety
+/// `pc` must be a shell installed by [`CanonicalLu::install`] or [`DistributedLu::install`],
+/// whose context is alive.
+unsafe fn shell_iterations(pc: p::PC) -> Option<u32> {
+    let mut name: *const c_char = null();
+    unsafe { p::PCShellGetName(pc, &mut name) };
+    if name.is_null() {
+        return None;
+    }
+    // SAFETY: the name set by `install`, NUL-terminated while the PC lives.
+    let name = unsafe { std::ffi::CStr::from_ptr(name) }.to_bytes_with_nul();
+    if name == DISTRIBUTED_LU_NAME {
+        // SAFETY: the distributed LU's shell (its name), caller's contract.
+        unsafe { distributed_context(pc) }
+            .ok()
+            .map(|lu| lu.last_iterations())
+    } else {
+        // SAFETY: the only other shell cfrd installs is the canonical solver.
+        unsafe { canonical_context(pc) }
+            .ok()
+            .map(|lu| lu.inner.last_iterations)
+    }
+}
+
 /// A vector PETSc owns, seen as a [`Vector`] for the duration of a callback (never destroyed).
 fn borrowed(raw: p::Vec) -> std::mem::ManuallyDrop<Vector> {
     std::mem::ManuallyDrop::new(Vector { raw })
 }
 
 /// PETSc error code of a failed callback.
-const CALLBACK_FAILED: p::PetscErrorCode = 1;
+pub(super) const CALLBACK_FAILED: p::PetscErrorCode = 1;
 
 unsafe extern "C" fn snes_residual<P: SnesProblem>(
     snes: p::SNES,
@@ -1486,11 +1400,12 @@ unsafe extern "C" fn snes_converged<P: SnesProblem>(
         // SAFETY: PETSc's type name, a NUL-terminated string while the PC lives.
         let shell =
             !kind.is_null() && unsafe { std::ffi::CStr::from_ptr(kind) }.to_bytes_with_nul() == p::PCSHELL;
-        // the only shell cfrd installs is the canonical solver: its inner Krylov iterations
+        // cfrd's shells (the direct solvers): their inner Krylov iterations
         if shell {
-            // SAFETY: installed by CanonicalLu::install, alive for the whole SNESSolve.
-            if let Ok(lu) = unsafe { canonical_context(pc) } {
-                lin = lu.last_iterations as i32;
+            // SAFETY: a shell installed by CanonicalLu::install or DistributedLu::install,
+            // alive for the whole SNESSolve; its name tells which.
+            if let Some(its) = unsafe { shell_iterations(pc) } {
+                lin = its as i32;
             }
         }
     }

@@ -89,7 +89,9 @@ impl<'a> Problem<'a> {
                 dofs: model.disc.canonical_dofs(),
                 reuse_factorization: scene.file.solver.reuse_factorization,
             }),
-            LinearSolver::DistributedLu => LinearMethod::DistributedLu,
+            LinearSolver::DistributedLu => LinearMethod::DistributedLu {
+                reuse_factorization: scene.file.solver.reuse_factorization,
+            },
         };
         Ok(Snes::new(
             petsc,
