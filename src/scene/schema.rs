@@ -312,6 +312,23 @@ pub struct SolverSpec {
     /// `--integration-tol-ratio` caps further without changing the scene (a restart accepts it).
     #[serde(default = "integration_tol_ratio")]
     pub integration_tol_ratio: f64,
+    /// Initial guess of a static load step's Newton iterations: `extrapolate` carries the
+    /// last converged step's displacement rate du/dλ over the new step (from the second step
+    /// of a stage on; `solver::integrator::QuasiStatic`), `none` starts from the converged
+    /// state. Default `none`. Dynamic stages start from the converged state either way.
+    #[serde(default)]
+    pub predictor: Predictor,
+}
+
+/// The initial guess of a static load step ([`SolverSpec::predictor`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Predictor {
+    /// The converged state of the step's start.
+    #[default]
+    None,
+    /// The converged state plus the last step's rate du/dλ times the new step.
+    Extrapolate,
 }
 
 impl SolverSpec {
@@ -382,6 +399,7 @@ impl Default for SolverSpec {
             linear_solver: LinearSolver::Iterative,
             reuse_factorization: true,
             integration_tol_ratio: integration_tol_ratio(),
+            predictor: Predictor::None,
         }
     }
 }

@@ -35,19 +35,18 @@ pub(super) struct StepTarget {
     pub at: String,
 }
 
-/// Solves one step to equilibrium from the committed state (Newton on SNES with `snes`) and
-/// commits the states on convergence. On failure the model's trial state is left where the
-/// last iterate was; the caller reverts it.
+/// Solves one step to equilibrium from the initial guess `x` (the committed state or the
+/// integrator's prediction; Newton on SNES with `snes`) and commits the states on
+/// convergence. On failure the model's trial state is left where the last iterate was; the
+/// caller reverts it.
 pub(super) fn solve(
     model: &mut Model,
     snes: &mut Snes,
     integrator: &dyn TimeIntegrator,
-    target: StepTarget,
+    (target, mut x): (StepTarget, Vector),
     report: &mut SolveReport,
 ) -> Result<(), SolveError> {
-    // initial guess: the committed state with the prescribed values of this step
-    let mut x = model.u.duplicate()?;
-    x.copy_from(&model.u_committed)?;
+    // the prescribed values of this step
     x.write(|s| {
         for &(l, v) in &target.targets {
             s[l] = v;

@@ -70,7 +70,7 @@ impl<'a> Problem<'a> {
             constraints,
             loads,
             snes: Some(snes),
-            integrator: Box::new(QuasiStatic),
+            integrator: Box::new(QuasiStatic::default()),
             stage: 0,
             node_offset: vec![[0.0; 3]; n_owned_nodes],
             node_was_active: vec![false; n_owned_nodes],
@@ -175,11 +175,14 @@ impl<'a> Problem<'a> {
             .snes
             .take()
             .expect("the nonlinear solver is in place between steps");
+        let mut guess = self.model.u_committed.duplicate()?;
+        guess.copy_from(&self.model.u_committed)?;
+        self.integrator.predict(&mut guess)?;
         let solved = newton::solve(
             &mut self.model,
             &mut snes,
             self.integrator.as_ref(),
-            target,
+            (target, guess),
             report,
         );
         self.snes = Some(snes);

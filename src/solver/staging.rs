@@ -9,7 +9,7 @@ use super::solid::Vector24;
 use super::state::{ProblemState, StageProgress};
 use super::step_control::StepControl;
 use crate::scene::dynamic::Anchors;
-use crate::scene::schema::PlacedNodes;
+use crate::scene::schema::{PlacedNodes, Predictor};
 
 impl Problem<'_> {
     /// Starts stage `k` of the scene: places its blocks (strain-free: their states start from
@@ -42,7 +42,10 @@ impl Problem<'_> {
     fn integrator_for_stage(&mut self) -> Result<Box<dyn TimeIntegrator>, SolveError> {
         let scene = self.scene;
         let Some(d) = &scene.stages[self.stage].dynamic else {
-            return Ok(Box::new(QuasiStatic));
+            return Ok(match scene.file.solver.predictor {
+                Predictor::Extrapolate => Box::new(QuasiStatic::extrapolating()),
+                Predictor::None => Box::new(QuasiStatic::default()),
+            });
         };
         let mass = self.model.assemble_mass(d.lumped)?;
         let damping = match d.damping {
@@ -143,10 +146,12 @@ impl Problem<'_> {
         built
     }
 
-    /// A fresh preconditioner (after a step checkpoint: the steps that follow do not depend on
-    /// the factors of the steps before it, so a restart from it repeats them exactly).
+    /// A fresh preconditioner and predictor (after a step checkpoint: the steps that follow do
+    /// not depend on the factors or the rate of the steps before it, so a restart from it
+    /// repeats them exactly).
     /// Collective.
     pub fn fresh_preconditioner(&mut self) -> Result<(), SolveError> {
+        self.integrator.forget();
         self.snes
             .as_mut()
             .expect("the nonlinear solver is in place between steps")

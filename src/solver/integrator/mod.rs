@@ -29,6 +29,17 @@ pub trait TimeIntegrator {
     /// Prepares the step from the converged time `t0` to `t1` (the shifts depend on dt).
     fn begin_step(&mut self, t0: f64, t1: f64);
 
+    /// The Newton iterations' initial guess of the step begun by
+    /// [`TimeIntegrator::begin_step`]: `x` holds the converged displacement on entry (owned
+    /// DOFs); an integrator that predicts changes it (the prescribed DOFs are set afterwards).
+    fn predict(&mut self, _x: &mut Vector) -> Result<(), PetscError> {
+        Ok(())
+    }
+
+    /// Forgets what the predictor learnt from earlier steps (after a step checkpoint, so that
+    /// a restart from it, which starts without that history, repeats the same steps).
+    fn forget(&mut self) {}
+
     /// The inertia and damping forces g(x) of the iterate `x` (owned rows; the Newton step adds
     /// them to the residual and counts their norm in its reference), `None` when there are
     /// none.
