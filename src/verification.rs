@@ -230,7 +230,8 @@
 //! ### Medium mesh: the three interface models
 //!
 //! Source: `MEDIUM=1 scripts/make_seed_static_figures.sh` at commit 51547bd
-//! (`seed_medium_slab.png`, the runs' `fig08_slab_stress.csv`), 2 ranks. The GP column is the
+//! (`seed_medium_slab.png`, the runs' `fig08_slab_stress.csv`), 2 ranks, the trilinear slab
+//! (before the seed scenes' slab had incompatible modes). The GP column is the
 //! bounded default reading of issue 19: `seed_medium_gp_interface.yaml` with its keys given
 //! explicitly (`normal_basis: displacement, void_ratio_bound: bandis, reversal_branch:
 //! trial`, the defaults from commit e5b3cbc on), 2 ranks, 1278 s, 1446 Newton iterations, 54
@@ -290,7 +291,7 @@
 //!
 //! ### Fine mesh against medium: hyperbolic interface
 //!
-//! Source: the fine run of commit 6549cb1 (`scripts/run_in_parts.sh` on
+//! Source (the trilinear slab): the fine run of commit 6549cb1 (`scripts/run_in_parts.sh` on
 //! `inputs/scenes/seed_fine_hyperbolic.yaml`, 2 ranks, seven parts, then
 //! `FINE=DIR scripts/make_seed_static_figures.sh`: `seed_hyperbolic_meshes.png`,
 //! `seed_fine_hyperbolic_fig*.png`). Values interpolated linearly between each profile's points,
@@ -474,8 +475,8 @@
 //! six zero-energy modes. The slab's membrane stresses, which the seed's Figs. 8 and 13 plot,
 //! are not stiffened by the locking: on the coarse seed dam the element changed them by up
 //! to 0.65 MPa and the deflection by up to 0.2 cm at the table's rows (the [coarse table](#coarse-mesh-the-three-interface-models)).
-//! The medium and fine tables below and the seed quake's figures were computed with the
-//! trilinear slab.
+//! The medium and fine tables above were computed with the trilinear slab; the seed quake's
+//! figures below with the incompatible modes.
 //!
 //! The artificial accelerograms ([`crate::seismic`]) are checked in their own module: the design
 //! spectrum reproduces the table of spec seismic §1.4 to 10⁻³, the Nigam–Jennings response
@@ -486,23 +487,25 @@
 //!
 //! ## The seed quake's figures (coarse mesh, both interface models)
 //!
-//! Commit 7b67265, 2 ranks, each run alone on the machine:
 //! `mpirun -n 2 cfrd run inputs/scenes/seed_coarse_gp_interface_quake.yaml -o gp` and the same
-//! with `seed_coarse_mohr_coulomb_quake.yaml` (`-o mc`) ran the construction, the impoundment
+//! with `seed_coarse_mohr_coulomb_quake.yaml` (`-o mc`) run the construction, the impoundment
 //! and the 20 s quake (Δt = 0.01 s, Newmark average acceleration, consistent mass, Rayleigh
 //! 2 % at 1 and 5 Hz), each writing Figs. 7–20; `cfrd overlay --quake "GP interface=gp"
-//! "ideal elasto-plastic=mc" -o seed_quake_interfaces.png` drew the figure below. The figures
+//! "ideal elasto-plastic=mc" -o seed_quake_interfaces.png` draws the figure below. The figures
 //! are `scripts/figures/seed_quake_gp_interface_*.png` and `seed_quake_mohr_coulomb_*.png`; the
-//! probe histories are sampled every 10 steps (`output_every: 10`).
+//! probe histories are sampled every 10 steps (`output_every: 10`). The results below are those
+//! of commit 902414d (the slab with incompatible modes); the wall times are those of commit
+//! 7b67265 (the trilinear slab; each run alone on the machine: the reruns shared it, so their
+//! times are not given).
 //!
 //! | interface | wall time (quake stage) | s per step | Newton per step (mean / largest) | cut-backs in the quake | memory per rank |
 //! |---|---|---|---|---|---|
 //! | GP | 438.6 s (399.7 s) | 0.200 | 2.51 / 11 | 10 | 132 / 109 MiB |
 //! | ideal elasto-plastic | 328.6 s (304.7 s) | 0.152 | 2.40 / 5 | 0 | 131 / 109 MiB |
 //!
-//! * **1 and 2 ranks.** The GP run on 1 rank (7 min 45 s) gives the 2-rank results bit for
-//!   bit (`cfrd compare gp gp1 --tolerance 0`: 0 in every field of every step). Before the
-//!   products with M and K₀ were summed in the mesh's DOF order
+//! * **1 and 2 ranks.** The GP run of commit 7b67265 on 1 rank (7 min 45 s) gives the 2-rank
+//!   results bit for bit (`cfrd compare gp gp1 --tolerance 0`: 0 in every field of every
+//!   step). Before the products with M and K₀ were summed in the mesh's DOF order
 //!   ([`crate::linalg::petsc::CanonicalProduct`]) the two parted at 2·10⁻¹⁵ in the quake's
 //!   first results step and by 1.0·10⁻³ of the displacement (7 % of the velocity) at its end,
 //!   the construction and impoundment being equal bit for bit; test
@@ -513,70 +516,73 @@
 //!   (η = 10.4 against η_p = 0.80 at the failing point, out-of-balance force 1.1·10¹⁰ N); before
 //!   the integrator's flip budget (`MAX_BRANCH_FLIPS`, [`crate::material::gp_integrator`]) it
 //!   stopped at 3.87 s on substepping that crept past the peak.
+//! * **The slab's element.** With the trilinear slab (commit 7b67265) the residual stresses of
+//!   the table below were within 0.4 MPa of these (GP σ_s at 2748 m: −2.90 against −3.19 MPa;
+//!   the crest row's σ_a −6.08 / −13.03 against −5.79 / −12.75 MPa) and the deflections within
+//!   0.1 cm: the findings below hold with either element.
 //!
 //! Residual slab stresses (after − before the quake, MPa, tension +) and deflection (cm) at the
 //! central section (Fig. 13), GP / ideal elasto-plastic:
 //!
 //! | elevation | σ_s residual | σ_a residual | σ_a after the quake | deflection residual |
 //! |---|---|---|---|---|
-//! | 2695 m | −4.32 / −4.70 | −1.44 / −1.23 | −4.37 / −4.59 | 1.6 / 1.6 |
-//! | 2723 m | −4.83 / −5.97 | −1.72 / −1.95 | −7.07 / −7.19 | 4.5 / 4.5 |
-//! | 2748 m | −2.90 / −5.62 | −2.27 / −2.81 | −7.49 / −7.95 | 6.5 / 6.5 |
-//! | 2770 m | −2.06 / −4.48 | −3.19 / −4.12 | −8.22 / −9.06 | 8.3 / 8.3 |
-//! | 2787 m | −0.70 / −3.91 | −4.07 / −5.59 | −8.74 / −10.18 | 10.2 / 10.2 |
-//! | 2799 m | +0.08 / −3.89 | −4.81 / −6.96 | −9.11 / −11.22 | 12.2 / 12.2 |
-//! | 2817 m | +0.52 / −2.27 | −5.58 / −9.76 | −8.69 / −12.93 | 15.3 / 15.1 |
-//! | 2840 m | +0.35 / +0.47 | −6.08 / −13.03 | −8.54 / −15.54 | 19.4 / 18.8 |
+//! | 2695 m | −4.09 / −4.36 | −1.19 / −1.18 | −4.69 / −4.57 | 1.7 / 1.7 |
+//! | 2723 m | −4.95 / −6.09 | −1.68 / −1.94 | −7.04 / −7.26 | 4.6 / 4.6 |
+//! | 2748 m | −3.19 / −5.37 | −2.25 / −2.73 | −7.42 / −7.83 | 6.5 / 6.5 |
+//! | 2769 m | −2.08 / −4.40 | −3.11 / −4.09 | −8.11 / −9.00 | 8.3 / 8.3 |
+//! | 2786 m | −0.68 / −3.54 | −3.97 / −5.59 | −8.58 / −10.13 | 10.2 / 10.2 |
+//! | 2799 m | −0.04 / −3.67 | −4.94 / −7.08 | −9.20 / −11.33 | 12.2 / 12.2 |
+//! | 2817 m | +0.40 / −2.05 | −5.70 / −9.90 | −8.79 / −13.04 | 15.2 / 15.1 |
+//! | 2840 m | +0.23 / +0.36 | −5.79 / −12.75 | −8.27 / −15.30 | 19.3 / 18.8 |
 //!
 //! Against the seed's findings (spec seismic §0, §3.7):
 //!
 //! * **"Axial compression induced by the residual deformation ≈ 9 MPa with the GP interface
 //!   and ≈ 13 MPa with the ideal elasto-plastic one"**: the ideal elasto-plastic interface gives
-//!   **−13.0 MPa** in the crest row, the seed's value; the GP interface gives less, as in the
-//!   seed, but about two thirds of the seed's 9 MPa: **−6.1 MPa** (largest after the quake
-//!   −9.1 MPa at 2799 m, against −15.5 MPa). Holds in direction and for the ideal
-//!   elasto-plastic value; the GP value is 6.1 rather than 9 MPa. Where the residual axial
+//!   **−12.8 MPa** in the crest row, the seed's value; the GP interface gives less, as in the
+//!   seed, but about two thirds of the seed's 9 MPa: **−5.8 MPa** (largest after the quake
+//!   −9.2 MPa at 2799 m, against −15.3 MPa). Holds in direction and for the ideal
+//!   elasto-plastic value; the GP value is 5.8 rather than 9 MPa. Where the residual axial
 //!   compression peaks differs from the seed: at the crest row on this mesh, not at mid-height
 //!   ("mid-valley" is the central section, where both are read here).
 //! * **"Slope-direction residual stresses agree between the models; compressive near the
 //!   bottom, tensile near the crest"**: the pattern holds for both, but they agree only at the
-//!   bottom (−4.3 / −4.7 MPa at 2695 m) and at the crest row (+0.35 / +0.47 MPa). Between
-//!   2748 and 2817 m the GP slab is 2.4–4.0 MPa less compressed, and tensile from 2799 m up
-//!   where the ideal elasto-plastic one is still at −2.3 to −3.9 MPa. Does not hold on this
-//!   mesh.
+//!   bottom (−4.1 / −4.4 MPa at 2695 m) and at the crest row (+0.23 / +0.36 MPa). Between
+//!   2748 and 2817 m the GP slab is 2.2–3.6 MPa less compressed, and about neutral or tensile
+//!   from 2799 m up where the ideal elasto-plastic one is still at −2.1 to −3.7 MPa. Does not
+//!   hold on this mesh.
 //! * **"The slab opens from the water line to the crest; I-D opens after about 2 s with the GP
 //!   interface"**: not seen with either model. The coarse mesh has no interface element above
 //!   the water line: its crest row's centroids lie at 2840.25 m (water at 2840 m, crest
 //!   2852 m), so I-C (2838 m) and I-D (2852 m) are the same element, whose normal stress stays
-//!   between 86 and 93 kPa (GP) through the quake (initial 89 kPa; seed I-C 23 kPa). No
-//!   slab–cushion element is open after the quake with the GP interface; with the ideal
-//!   elasto-plastic one the element at 2723 m that was open by 1.3 µm before the quake stays
-//!   so (2.5 µm at most during it). The joints open instead: 55 of 107 joint elements are open
-//!   after the quake with either model, the widest the right perimetric joint of the crest row
-//!   (20 mm GP, 41 mm ideal elasto-plastic). The finding needs the medium mesh, whose
-//!   slab–cushion rows reach the crest.
-//! * **Residual deflection** grows from 1.6 cm at the bottom row to 19.4 / 18.8 cm at the top
+//!   between 85 and 94 kPa with either model through the quake (initial 90 kPa; seed I-C
+//!   23 kPa). No slab–cushion element is open after the quake. The joints open instead: 44
+//!   (GP) and 42 of 107 joint elements are open after the quake, the widest the right
+//!   perimetric joint, 17.7 mm at 2817 m (GP) and 41.0 mm in the crest row (ideal
+//!   elasto-plastic; `cfrd export gp --field interface_opening --set 'joint_*'`). The finding
+//!   needs the medium mesh, whose slab–cushion rows reach the crest.
+//! * **Residual deflection** grows from 1.7 cm at the bottom row to 19.3 / 18.8 cm at the top
 //!   (largest near the crest, as in the seed) and hardly depends on the interface: the rockfill
 //!   sets it.
-//! * **Residual deformation** (Fig. 12, magnified 20 times): crest +0.119 / +0.097 m
-//!   downstream, −0.011 / −0.005 m along the axis, −0.180 / −0.178 m settlement (0.11 /
-//!   0.10 % of H = 171 m; spec seismic §3.7: 0.1–0.5 % of H at design level). Peak crest
-//!   acceleration over PGA (x, y, z; `quake_summary.json`): 3.1 / 3.1 / 4.4 (GP) and 2.6 /
-//!   3.1 / 2.8. These peaks rest on single spikes of the stiff interfaces: the GP run of commit
-//!   c433734, whose results differ from these by rounding only (at most 0.17 MPa in the
-//!   residual slab stresses, 0.02 cm in the deflection), gave 2.7 / 2.1 / 4.0. Read the
-//!   residual state, not the peak accelerations.
+//! * **Residual deformation** (Fig. 12, magnified 20 times): crest +0.116 / +0.100 m
+//!   downstream, −0.012 / −0.006 m along the axis, −0.178 / −0.182 m settlement (0.10 /
+//!   0.11 % of H = 171 m; spec seismic §3.7: 0.1–0.5 % of H at design level). Peak crest
+//!   acceleration over PGA (x, y, z; `quake_summary.json`): 2.7 / 2.1 / 5.1 (GP) and 2.8 /
+//!   2.6 / 3.9. They are read at the results steps, every 0.1 s, and rest on single spikes of
+//!   the stiff interfaces: the GP runs of commits c433734 and 7b67265 (trilinear slab), whose
+//!   residual stresses differ from these by at most 0.4 MPa, gave 2.7 / 2.1 / 4.0 and 3.1 /
+//!   3.1 / 4.4. Read the residual state, not the peak accelerations.
 //! * **Interface slip** (Fig. 15): the residual shear displacement is largest in the crest row
-//!   near y = 92 m with both models, 67 mm (GP) against 40 mm, and below 20 mm (GP) and 10 mm
+//!   near y = 92 m with both models, 65 mm (GP) against 39 mm, and at most 20 mm (GP) and 9 mm
 //!   under 2800 m: the GP interface slips before its peak, the ideal elasto-plastic one only at
-//!   it, which is the seed's point about sub-peak slip. Its residual normal displacement is a
-//!   closure of up to 0.66 mm in the crest row (cyclic contraction; the ideal elasto-plastic
+//!   it, which is the seed's point about sub-peak slip. Its residual normal displacement in the
+//!   crest row is a dilation of 0.10–0.14 mm without opening (the ideal elasto-plastic
 //!   interface has none).
 //! * **Probes** (Figs. 14, 18–20): the coarse mesh's interface rows are about 23 m apart, so
-//!   I-B (left bank, 2809 m) lies at 2816.8 m. Initial σ_n: I-B 0.066 MPa (GP) and 0.22 MPa
-//!   (seed 0.31 MPa). F-A (2816.9 m): σ_a from −3.1 / −3.2 MPa before to −8.7 / −12.9 MPa after
-//!   the quake (at least −11.8 / −15.2 MPa during it). Along the slope F-A reaches **+2.5 MPa
-//!   in tension** at t = 13.1 s with the GP interface (at most +0.40 MPa with the ideal
+//!   I-B (left bank, 2809 m) lies at 2816.8 m. Initial σ_n: I-B 0.067 MPa (GP) and 0.22 MPa
+//!   (seed 0.31 MPa). F-A (2816.9 m): σ_a from −3.1 / −3.1 MPa before to −8.8 / −13.0 MPa after
+//!   the quake (at least −12.0 / −15.2 MPa during it). Along the slope F-A reaches **+2.1 MPa
+//!   in tension** at t = 13.1 s with the GP interface (at most +0.65 MPa with the ideal
 //!   elasto-plastic one), above the tensile strength of C25 concrete (about 1.8 MPa): the
 //!   linear-elastic slab of the seed cannot crack, so the transient is reported, not followed.
 //!
