@@ -32,7 +32,8 @@ pub struct QuakeSummary {
     pub crest_node_id: u64,
     /// Residual crest displacement, end of the quake minus before it (m; x, y, z).
     pub residual_displacement_m: [f64; 3],
-    /// Peak absolute crest acceleration (m/s²; x, y, z) over the written steps.
+    /// Peak absolute crest acceleration (m/s²; x, y, z) over every time step (over the
+    /// results steps for a history read back from results files).
     pub peak_crest_acceleration: [f64; 3],
     /// Peak ground acceleration of the record over the stage (m/s²; x, y, z).
     pub peak_ground_acceleration: [f64; 3],
@@ -125,10 +126,44 @@ pub fn summarize(scene: &Scene, h: &CrestHistory) -> QuakeSummary {
     }
 }
 
+/// The crest history of every converged time step (the run's [`crate::solver::SolveReport::crest`]
+/// rows), from t = 0, the state before the quake (at rest relative to the base); `None`
+/// without rows.
+pub fn crest_steps(scene: &Scene, rows: &[[f64; 10]]) -> Option<CrestHistory> {
+    let dynamic = scene.stages.iter().find_map(|s| s.dynamic.as_ref())?;
+    if rows.is_empty() {
+        return None;
+    }
+    let ground0 = dynamic.ground_acceleration(0.0);
+    let start = [
+        0.0, 0.0, 0.0, 0.0, ground0[0], ground0[1], ground0[2], ground0[0], ground0[1], ground0[2],
+    ];
+    let all = || std::iter::once(&start).chain(rows);
+    let part = |o: usize| all().map(|r| [r[o], r[o + 1], r[o + 2]]).collect();
+    Some(CrestHistory {
+        node: crest_node(scene),
+        t: all().map(|r| r[0]).collect(),
+        u: part(1),
+        a: part(4),
+        ground: part(7),
+    })
+}
+
 /// Writes `quake_crest.csv`, `quake_crest.png` and `quake_summary.json` into `dir` for a run
-/// whose results are `h5`; nothing for a scene without a dynamic stage.
-pub fn write_quake_outputs(scene: &Scene, h5: &Path, dir: &Path) -> Result<Vec<PathBuf>, String> {
-    let Some(h) = crest_history(scene, h5)? else {
+/// whose results are `h5`: from the crest's motion at every time step (`steps`, the run's
+/// record) when given, else from the results steps; nothing for a scene without a dynamic
+/// stage.
+pub fn write_quake_outputs(
+    scene: &Scene,
+    h5: &Path,
+    steps: &[[f64; 10]],
+    dir: &Path,
+) -> Result<Vec<PathBuf>, String> {
+    let history = match crest_steps(scene, steps) {
+        Some(h) => Some(h),
+        None => crest_history(scene, h5)?,
+    };
+    let Some(h) = history else {
         return Ok(Vec::new());
     };
     let mut csv = String::from("t,u_x,u_y,u_z,a_x,a_y,a_z,ag_x,ag_y,ag_z\n");

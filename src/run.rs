@@ -278,6 +278,9 @@ pub fn run_scene(
     let mut modal = None;
     // without a terminal (nohup, a cluster job's log) the bar is not drawn: a line per load step
     let step_lines = rank == 0 && opts.verbose && !std::io::IsTerminal::is_terminal(&std::io::stderr());
+    // the crest's motion is recorded at every step of the first dynamic stage (crate::quake)
+    let first_dynamic = scene.stages.iter().position(|s| s.dynamic.is_some());
+    let crest = crate::quake::crest_node(scene);
     for (k, stage) in scene.stages.iter().enumerate().skip(first_stage) {
         let stage_start = Instant::now();
         say(&format!(
@@ -318,6 +321,14 @@ pub fn run_scene(
                 break;
             }
             steps_in_stage += 1;
+            if Some(k) == first_dynamic {
+                solved = problem
+                    .node_motion(crest, path.t)
+                    .map(|row| report.crest.push(row));
+                if solved.is_err() {
+                    break;
+                }
+            }
             let at = stage_time(stage, path.t);
             if step_lines {
                 eprintln!(
@@ -395,7 +406,7 @@ pub fn run_scene(
         code: EXIT_IO,
         message: format!("writing results: {m}"),
     })?;
-    write_quake(world, scene, &h5, &out_dir, failure.as_deref())?;
+    write_quake(world, scene, &h5, &report.crest, &out_dir, failure.as_deref())?;
     // the profiles need at least one completed stage; a failure to write them never hides the
     // failure of a stage
     match &scene.file.output.profiles {
@@ -532,6 +543,7 @@ fn write_quake(
     world: &SimpleCommunicator,
     scene: &Scene,
     h5: &Path,
+    crest: &[[f64; 10]],
     out_dir: &Path,
     failure: Option<&str>,
 ) -> Result<(), RunFailure> {
@@ -540,7 +552,7 @@ fn write_quake(
     }
     let written = if world.rank() == 0 {
         let spec = scene.file.output.profiles.clone().unwrap_or_default();
-        crate::quake::write_quake_outputs(scene, h5, out_dir).and_then(|mut files| {
+        crate::quake::write_quake_outputs(scene, h5, crest, out_dir).and_then(|mut files| {
             let parts = [h5.to_path_buf()];
             files.extend(crate::quake_figures::write_quake_figures(
                 scene, &spec, &parts, out_dir,

@@ -426,6 +426,36 @@ fn a_plastic_dam_quake_is_the_same_bit_for_bit_on_1_and_2_ranks() {
         "1 and 2 ranks: {} result fields identical bit for bit, {quake} quake steps",
         fields.len()
     );
+    let crest = |out: &str| std::fs::read_to_string(d.join(out).join("quake_crest.csv")).unwrap();
+    assert_eq!(crest("out2"), crest("out1"), "the crest history on 1 and 2 ranks");
+    check_crest_history(&crest("out2"), 0.3, 10);
+}
+
+/// The crest history of `quake_crest.csv` ([`cfrd::quake`]) of a quake of `duration` s at
+/// Δt = 0.01 s with fields every `every` steps: a row at t = 0 and at every time step to the
+/// end, so its peak acceleration is at least that of the results steps alone.
+fn check_crest_history(text: &str, duration: f64, every: usize) {
+    let rows: Vec<Vec<f64>> = text
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    let t: Vec<f64> = rows.iter().map(|r| r[0]).collect();
+    assert_eq!(t[0], 0.0);
+    assert!(t.windows(2).all(|w| w[1] > w[0]), "increasing times");
+    assert!(
+        (t[t.len() - 1] - duration).abs() < 1e-9,
+        "ends at {duration} s: {t:?}"
+    );
+    assert!(
+        rows.len() > (duration / 0.01).round() as usize,
+        "a row per time step: {}",
+        rows.len()
+    );
+    let peak = |r: &mut dyn Iterator<Item = &Vec<f64>>| r.map(|r| r[4].abs()).fold(0.0, f64::max);
+    let (all, sampled) = (peak(&mut rows.iter()), peak(&mut rows.iter().step_by(every)));
+    println!("peak crest acceleration (x): every step {all:.4} m/s², every {every} steps {sampled:.4} m/s²");
+    assert!(all >= sampled && all > 0.0);
 }
 
 /// The small dam (the GP interface, canonical LU) killed twice in a quake with Rayleigh damping
@@ -447,4 +477,8 @@ fn a_plastic_dam_quake_killed_twice_restarts_bitwise() {
     let t = common::time_in_dynamic_stage(&d.join("k2/checkpoint.h5")).expect("in the quake");
     eprintln!("second kill at t = {t} s");
     common::restart_matches_bitwise(d, "dam.yaml", "k2/checkpoint.h5", "rest", "full");
+    // the crest's history of every step is kept in the checkpoints: the restarted run has it all
+    let crest = |out: &str| std::fs::read_to_string(d.join(out).join("quake_crest.csv")).unwrap();
+    assert_eq!(crest("rest"), crest("full"), "the restarted run's crest history");
+    check_crest_history(&crest("rest"), 0.6, 5);
 }

@@ -134,6 +134,38 @@ impl<'a> Problem<'a> {
         })
     }
 
+    /// The motion of node `node` (mesh index) at the committed state of a dynamic stage, at its
+    /// time `t` (s): `[t, u (3), a (3), a_g (3)]` with u relative to the base and to the stage's
+    /// start and a the absolute acceleration, a_g the ground's (a row of
+    /// [`SolveReport::crest`]). Zeros for a stage without rates. Collective.
+    pub fn node_motion(&self, node: usize, t: f64) -> Result<[f64; 10], SolveError> {
+        let mut row = [0.0; 10];
+        let rates = self.integrator.rates()?;
+        let owned = self
+            .model
+            .disc
+            .owned_nodes
+            .iter()
+            .position(|&n| n as usize == node);
+        if let (Some(i), Some(r)) = (owned, &rates) {
+            let u = self
+                .model
+                .u_committed
+                .read(|s| [s[3 * i], s[3 * i + 1], s[3 * i + 2]])?;
+            for c in 0..3 {
+                row[1 + c] = u[c] - self.u_stage_start[3 * i + c];
+                row[4 + c] = r.acceleration[3 * i + c] + r.ground[c];
+                row[7 + c] = r.ground[c];
+            }
+        }
+        // one rank holds the node: the sums add zeros to its values, exactly
+        let mut out = [t; 10];
+        for (o, v) in out.iter_mut().zip(row).skip(1) {
+            *o = crate::parallel::sum_f64(self.comm, v);
+        }
+        Ok(out)
+    }
+
     /// Whether the current stage steps in load (static) or in time (dynamic).
     fn step_kind(&self) -> StepKind {
         match self.scene.stages[self.stage].dynamic {

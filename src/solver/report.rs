@@ -29,6 +29,12 @@ pub struct SolveReport {
     /// Wall-clock seconds of each completed stage, for the run summary.
     #[serde(default)]
     pub stage_seconds: Vec<crate::io::summary::StageSeconds>,
+    /// The crest's motion at every converged time step of the first dynamic stage
+    /// ([`crate::quake`], spec seismic §3.6): `[t, u_x, u_y, u_z, a_x, a_y, a_z, ag_x, ag_y,
+    /// ag_z]`, u relative to the base and to the state before the quake (m), a absolute and a_g
+    /// the ground's (m/s²). Kept in step checkpoints, so a restarted run has the whole history.
+    #[serde(default)]
+    pub crest: Vec<[f64; 10]>,
 }
 
 /// Counts of interface points in the committed state (all ranks).
