@@ -231,7 +231,12 @@
 //!
 //! Source: `MEDIUM=1 scripts/make_seed_static_figures.sh` at commit 51547bd
 //! (`seed_medium_slab.png`, the runs' `fig08_slab_stress.csv`), 2 ranks, the trilinear slab
-//! (before the seed scenes' slab had incompatible modes). The GP column is the
+//! (before the seed scenes' slab had incompatible modes). With incompatible modes (commit
+//! e4f3019, the canonical-LU run of the medium solver comparison in [`crate::performance`])
+//! the hyperbolic column's rows read −2.65, −1.97, −8.18, −8.44, −3.94 and −1.56 MPa in σ_s,
+//! −0.93, −1.12, −5.34, −6.32, −5.67 and −3.27 MPa in σ_a and −0.2, −0.3, 10.7, 13.2, 11.2
+//! and 5.2 cm: the element moves the medium slab's axial stress by up to 0.26 MPa (2703 m
+//! after impoundment) and its slope stress and deflection by less than 0.1. The GP column is the
 //! bounded default reading of issue 19: `seed_medium_gp_interface.yaml` with its keys given
 //! explicitly (`normal_basis: displacement, void_ratio_bound: bandis, reversal_branch:
 //! trial`, the defaults from commit e5b3cbc on), 2 ranks, 1278 s, 1446 Newton iterations, 54
