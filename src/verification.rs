@@ -504,7 +504,9 @@
 //! trilinear slab; each run alone on the machine: the reruns of 902414d shared it). The GP run
 //! of commit a0533fd, alone on the machine and bitwise equal in its results to that of
 //! 902414d, took 379.2 s (quake stage 346.1 s, 0.173 s per step, 2.54 Newton iterations per
-//! step, at most 8, 3 cut-backs in the quake, 133 / 110 MiB per rank).
+//! step, at most 8, 3 cut-backs in the quake, 133 / 110 MiB per rank); the ideal
+//! elasto-plastic one 340.9 s (317.0 s, 0.158 s per step, 2.38 per step, at most 7, 2
+//! cut-backs, 134 / 111 MiB).
 //!
 //! | interface | wall time (quake stage) | s per step | Newton per step (mean / largest) | cut-backs in the quake | memory per rank |
 //! |---|---|---|---|---|---|
@@ -576,11 +578,11 @@
 //!   downstream, −0.012 / −0.006 m along the axis, −0.178 / −0.182 m settlement (0.10 /
 //!   0.11 % of H = 171 m; spec seismic §3.7: 0.1–0.5 % of H at design level). Peak crest
 //!   acceleration over PGA (x, y, z; `quake_summary.json`) over every time step (commit
-//!   a0533fd, GP): **3.4 / 4.7 / 5.3**. Read at the results steps only, every 0.1 s, as
-//!   before that commit, the same run gives 2.7 / 2.1 / 5.1 (GP) and the ideal elasto-plastic
-//!   one 2.8 / 2.6 / 3.9: the sampling missed the peaks. They are spikes of single steps: the
-//!   axis direction's 14.1 m/s² at t = 10.56 s lies between 2.2 and 6.1 m/s² at the steps
-//!   before and after it, the kind of high-frequency response that the undamped
+//!   a0533fd): **3.4 / 4.7 / 5.3** (GP) and **4.1 / 2.6 / 6.1** (ideal elasto-plastic). Read at
+//!   the results steps only, every 0.1 s, as before that commit, the same runs give 2.7 / 2.1 /
+//!   5.1 and 2.8 / 2.6 / 3.9: the sampling missed the peaks. They are spikes of single steps:
+//!   the GP run's axis-direction 14.1 m/s² at t = 10.56 s lies between 2.2 and 6.1 m/s² at the
+//!   steps before and after it, the kind of high-frequency response that the undamped
 //!   average-acceleration rule keeps where an interface's stiffness changes abruptly (whether
 //!   HHT-α's damping removes it was not run). Earlier runs read so
 //!   (commits c433734 and 7b67265, trilinear slab) gave 2.7 / 2.1 / 4.0 and 3.1 / 3.1 / 4.4,
