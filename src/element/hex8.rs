@@ -113,8 +113,14 @@ pub fn volume(x: &Coords8) -> f64 {
 ///                                   ⎣ N,z  0    N,x ⎦  γzx    (N = N_a)
 /// ```
 pub fn b_matrix(dn_dx: &[[f64; 3]; 8]) -> BMatrix {
-    let mut b = BMatrix::zeros();
-    for (a, g) in dn_dx.iter().enumerate() {
+    strain_operator(dn_dx)
+}
+
+/// The strain operator of any set of vector-valued shape functions with gradients `grads`
+/// (3 columns per function, in the pattern of [`b_matrix`]); `C` = 3 × `grads.len()`.
+pub fn strain_operator<const C: usize>(grads: &[[f64; 3]]) -> SMatrix<f64, 6, C> {
+    let mut b = SMatrix::<f64, 6, C>::zeros();
+    for (a, g) in grads.iter().enumerate() {
         let c = 3 * a;
         b[(0, c)] = g[0];
         b[(1, c + 1)] = g[1];

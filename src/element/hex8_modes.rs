@@ -25,7 +25,7 @@
 //! depend on α; the scene accepts them only for elastic blocks.
 
 use crate::element::hex8::{
-    jacobian, BMatrix, Coords8, Hex8Geometry, Matrix24, NonPositiveJacobian, Vector24,
+    jacobian, strain_operator, BMatrix, Coords8, Hex8Geometry, Matrix24, NonPositiveJacobian, Vector24,
 };
 use crate::element::quadrature::{HEX_GAUSS_2X2X2, HEX_GAUSS_POINTS};
 use crate::element::shape::hex8_shape_derivatives;
@@ -107,20 +107,7 @@ impl IncompatibleModes {
     /// G at Gauss point `q`: the B-matrix pattern of [`crate::element::hex8::b_matrix`] with the
     /// three modes in place of the eight nodes.
     pub fn g_matrix(&self, q: usize) -> GMatrix {
-        let mut g = GMatrix::zeros();
-        for (k, d) in self.grad[q].iter().enumerate() {
-            let c = 3 * k;
-            g[(0, c)] = d[0];
-            g[(1, c + 1)] = d[1];
-            g[(2, c + 2)] = d[2];
-            g[(3, c)] = d[1];
-            g[(3, c + 1)] = d[0];
-            g[(4, c + 1)] = d[2];
-            g[(4, c + 2)] = d[1];
-            g[(5, c)] = d[2];
-            g[(5, c + 2)] = d[0];
-        }
-        g
+        strain_operator(&self.grad[q])
     }
 
     /// K_uα, K_αα and K_αu at the tangents `D_q`. `None` when K_αα is singular (a zero tangent).
