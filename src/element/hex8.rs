@@ -349,13 +349,13 @@ pub fn face_pressure_load(x: &Coords8, face: usize, p: &[f64; 4]) -> Vector24 {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::element::shape::HEX8_REFERENCE_NODES;
     use crate::tensor::Vector6;
 
     /// A strongly distorted (non-parallelepiped, non-planar faces) but valid hex.
-    fn distorted() -> Coords8 {
+    pub(crate) fn distorted() -> Coords8 {
         [
             [0.0, 0.0, 0.0],
             [2.1, 0.2, -0.1],

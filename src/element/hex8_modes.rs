@@ -171,6 +171,7 @@ impl Condensation {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::element::hex8::tests::distorted;
 
     fn elastic_d(e: f64, nu: f64) -> Tangent6 {
         let l = e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
@@ -184,19 +185,6 @@ mod tests {
             d[(i + 3, i + 3)] = g;
         }
         Tangent6(d)
-    }
-
-    fn distorted() -> Coords8 {
-        [
-            [0.0, 0.0, 0.0],
-            [2.1, 0.1, -0.1],
-            [2.3, 1.2, 0.2],
-            [-0.2, 0.9, 0.1],
-            [0.1, -0.1, 0.8],
-            [1.9, 0.2, 1.1],
-            [2.2, 1.1, 1.3],
-            [0.1, 1.0, 0.9],
-        ]
     }
 
     fn brick(a: f64, b: f64, c: f64) -> Coords8 {
