@@ -240,9 +240,11 @@
 //!                                 { name: F-A, elevation: 2813.0, element: slab } ] } }
 //! ```
 //!
-//! Their histories (Figs. 14, 18–20) are sampled at the results steps, so `output_every`
-//! sets their resolution as well as the size of `results.h5` (the coarse seed dam: about
-//! 0.24 MB per results step, 47 MB for the 20 s quake at `output_every: 10`).
+//! `cfrd run` records their histories (Figs. 14, 18–20) at every time step, as it does the
+//! crest's, so `output_every` only sets how often the full fields go to `results.h5` (the
+//! coarse seed dam: about 0.24 MB per results step, 47 MB for the 20 s quake at
+//! `output_every: 10`); `cfrd profiles` draws them again from results files, sampled at
+//! their results steps ([`crate::quake_probes`]).
 //!
 //! Displacements of a dynamic stage are relative to the base; its results also hold the
 //! `velocity` (relative) and the absolute `acceleration` (relative plus ground) of every node.
@@ -352,7 +354,11 @@
 //! every converged load step as well, for stages longer than a job may run: a restart then
 //! continues inside the stage. `cfrd run --checkpoint stage|step|none` overrides the scene's
 //! choice without changing the scene, whose hash a restart checks, so a run in parts may switch
-//! to step checkpoints for its long stages.
+//! to step checkpoints for its long stages. `--checkpoint-every N` writes the step checkpoints
+//! after every N-th converged load step of the run only (counted over the run, so a restart
+//! with the same N writes them at the same steps): a long quake keeps its factors between
+//! them (each step checkpoint starts a fresh factorization) and writes a few checkpoints
+//! instead of thousands, e.g. `--checkpoint-every 200` for the 2,000 steps of the seed quake.
 //!
 //! ```sh
 //! mpirun -n 2 cfrd run dam.yaml -o out/a                                   # killed, or stopped
@@ -414,7 +420,7 @@
 //! | `quake_crest.csv/.png`, `quake_summary.json` | a scene with an earthquake: the crest's displacement since the quake began, absolute and ground acceleration at every time step (kept in step checkpoints, so a restarted run writes the whole quake); residual crest displacement, peak accelerations and amplification ([`crate::quake`]) |
 //! | `fig12_outline`, `fig13_residual_slab` (`.csv` and `.png`) | a scene with an earthquake (with `output.profiles` or its defaults): the central cross-section before and after the quake, residual displacement magnified by the factor its CSV's first line and the plot state (seed Fig. 12); slab σ_s, σ_a and deflection at the central section before, after and residual = after − before (Fig. 13) ([`crate::quake_figures`]) |
 //! | `fig15_interface_residual.csv`, `fig15_interface_slip.png`, `fig16_interface_normal`, `fig17_interface_opening` | residual interface shear displacement (cushion relative to slab) of every interface element as vectors on the unfolded face (Fig. 15), residual normal displacement excluding opening (Fig. 16) and opening after the quake (Figs. 16–17) along the axis, one line per elevation; the three CSVs hold one row per interface element |
-//! | `fig14_slab_probe_NAME`, `fig18_interface_probe_NAME`, `fig20_opening` (`.csv` and `.png`), `quake_probes.csv` | histories of the probes of `output.profiles.probes`: σ_s, σ_a of a slab probe (`element: slab`, the seed's F-A, Fig. 14); σ_n, τ_s, τ_a, δ_s, δ_a, δ_n and opening of an interface probe (I-B, I-C: Figs. 18–19); the opening of every interface probe (I-D: Fig. 20); where each probe lies. Sampled at the results steps of the quake (every `output_every` time steps) plus t = 0, the state before it; each CSV says so in its first line |
+//! | `fig14_slab_probe_NAME`, `fig18_interface_probe_NAME`, `fig20_opening` (`.csv` and `.png`), `quake_probes.csv` | histories of the probes of `output.profiles.probes`: σ_s, σ_a of a slab probe (`element: slab`, the seed's F-A, Fig. 14); σ_n, τ_s, τ_a, δ_s, δ_a, δ_n and opening of an interface probe (I-B, I-C: Figs. 18–19); the opening of every interface probe (I-D: Fig. 20); where each probe lies. Every time step of the quake plus t = 0, the state before it (kept in step checkpoints; `cfrd profiles` samples them at the results steps instead); each CSV says so in its first line ([`crate::quake_probes`]) |
 //!
 //! Fig. 8 of the main job (`fig08_slab_stress.png` of the coarse GP-interface scene, as kept
 //! in `scripts/figures/seed_static_gp_interface_fig08_slab_stress.png`):

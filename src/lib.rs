@@ -54,6 +54,8 @@ pub mod quake;
 #[cfg(feature = "native")]
 pub mod quake_figures;
 #[cfg(feature = "native")]
+pub mod quake_probes;
+#[cfg(feature = "native")]
 pub mod run;
 pub mod scene;
 pub mod seismic;

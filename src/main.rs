@@ -64,6 +64,13 @@ enum Command {
         /// parts may switch to step checkpoints for its long stages.
         #[arg(long, value_name = "stage|step|none", value_parser = parse_checkpoint)]
         checkpoint: Option<cfrd::scene::schema::CheckpointMode>,
+        /// Step checkpoints after every N-th converged load step of the run only (and at the
+        /// end of every stage), counted over the whole run, so a restarted run writes them
+        /// at the same steps as an uninterrupted one with the same N; implies `--checkpoint
+        /// step`. Each step checkpoint starts a fresh factorization, which a long quake
+        /// (thousands of steps, factors reused across them) need not pay at every step.
+        #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
+        checkpoint_every: Option<u32>,
         /// Print every Newton iteration's relative residual and the reason of every cut-back,
         /// with the node of the largest out-of-balance force (rank 0, standard error), as the
         /// scene's `solver.monitor: true` does; the scene (and its hash, which a restart checks)
@@ -449,6 +456,7 @@ fn main() -> ExitCode {
                 restart: None,
                 stop_after_stage: None,
                 checkpoint: None,
+                checkpoint_every: None,
                 monitor: false,
                 integration_tol_ratio: None,
             };
@@ -491,10 +499,19 @@ fn main() -> ExitCode {
             restart,
             stop_after_stage,
             checkpoint,
+            checkpoint_every,
             monitor,
             integration_tol_ratio,
             overwrite,
         } => with_mpi(|world| {
+            if checkpoint_every.is_some()
+                && checkpoint.is_some_and(|c| c != cfrd::scene::schema::CheckpointMode::Step)
+            {
+                return Err(cfrd::run::RunFailure {
+                    code: 2,
+                    message: "--checkpoint-every needs step checkpoints: leave out --checkpoint or give --checkpoint step".into(),
+                });
+            }
             let dir = cfrd::io::outdir::run_output_dir(out.as_deref(), scene.as_deref());
             preflight_run(world, dir.as_deref(), restart.as_deref(), overwrite, quiet)?;
             let opts = cfrd::run::RunOptions {
@@ -504,7 +521,9 @@ fn main() -> ExitCode {
                 verbose: !quiet,
                 restart,
                 stop_after_stage,
-                checkpoint,
+                checkpoint: checkpoint_every
+                    .map_or(checkpoint, |_| Some(cfrd::scene::schema::CheckpointMode::Step)),
+                checkpoint_every,
                 monitor,
                 integration_tol_ratio,
             };
@@ -554,7 +573,7 @@ fn profiles_of_parts(
     let files: Vec<PathBuf> = runs.iter().map(|r| cfrd::io::compare::results_file(r)).collect();
     std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
     let statics = cfrd::run::write_profiles_from_results(&s, spec, &files, out)?;
-    let quake = cfrd::quake_figures::write_quake_figures(&s, spec, &files, out)?;
+    let quake = cfrd::quake_figures::write_quake_figures(&s, spec, &files, &[], out)?;
     Ok(statics.len() + quake.len())
 }
 
@@ -592,20 +611,59 @@ fn partition_ahead(scene: &std::path::Path, parts: usize, out: &std::path::Path)
     let cells = cfrd::solver::mesh_cells(&s.mesh);
     let n = s.mesh.num_nodes();
     let (band, n_bands) = cfrd::run::construction_bands(&s);
+    let started = std::time::Instant::now();
     let part =
         partition::partition_elements_by_band(&cells, n, parts, &band, n_bands).map_err(|e| e.to_string())?;
+    let seconds = started.elapsed().as_secs_f64();
     let p = partition::Partition::new(&cells, n, parts, part.clone());
-    let counts: Vec<usize> = (0..parts).map(|r| p.owned_cells(r).len()).collect();
     partition::PartitionFile::new(&cells, n, parts, part)
         .write(out)
         .map_err(|e| e.to_string())?;
     Ok(format!(
-        "{}: {} elements in {parts} parts {:?}, {} elements on part boundaries",
+        "{}: {} elements, {} nodes in {parts} parts ({seconds:.2} s)\n{}",
         out.display(),
         cells.len(),
-        counts,
-        p.boundary_cells(&cells)
+        n,
+        partition_statistics(&p, &cells)
     ))
+}
+
+/// What a partition costs a run in balance and communication: elements, owned nodes and ghost
+/// nodes per part (min / mean / max) and the elements on part boundaries. A ghost node is
+/// received at every update of the ghosted displacement (3 values) and sends its element
+/// forces back once per assembly.
+fn partition_statistics(p: &partition::Partition, cells: &partition::Cells) -> String {
+    let parts = p.nparts;
+    let spread = |v: Vec<usize>| {
+        let (min, max) = (
+            v.iter().min().copied().unwrap_or(0),
+            v.iter().max().copied().unwrap_or(0),
+        );
+        let total: usize = v.iter().sum();
+        (min, total as f64 / parts as f64, max, total)
+    };
+    let line = |what: &str, (min, mean, max, total): (usize, f64, usize, usize)| {
+        format!("  {what} per part: min {min}, mean {mean:.1}, max {max} (total {total})\n")
+    };
+    let owned: Vec<usize> = (0..parts)
+        .map(|r| p.node_offsets[r + 1] - p.node_offsets[r])
+        .collect();
+    let ghosts: Vec<usize> = (0..parts).map(|r| p.ghost_nodes(cells, r).len()).collect();
+    let ratio = owned
+        .iter()
+        .zip(&ghosts)
+        .map(|(&o, &g)| g as f64 / o.max(1) as f64)
+        .fold(0.0, f64::max);
+    format!(
+        "{}{}{}  elements on part boundaries: {}; largest ghost / owned nodes of a part: {ratio:.3}",
+        line(
+            "elements",
+            spread((0..parts).map(|r| p.owned_cells(r).len()).collect())
+        ),
+        line("owned nodes", spread(owned)),
+        line("ghost nodes", spread(ghosts)),
+        p.boundary_cells(cells),
+    )
 }
 
 /// Initializes MPI, installs the abort-on-panic hook, runs `f`, and maps failures to exit codes

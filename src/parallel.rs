@@ -81,6 +81,13 @@ pub fn sum_f64(world: &SimpleCommunicator, v: f64) -> f64 {
     out
 }
 
+/// Sum over ranks, entry by entry (every rank passes the same length).
+pub fn sum_f64_slice(world: &SimpleCommunicator, v: &[f64]) -> Vec<f64> {
+    let mut out = vec![0.0; v.len()];
+    world.all_reduce_into(v, &mut out[..], SystemOperation::sum());
+    out
+}
+
 /// Whether `v` is true on any rank (collective).
 pub fn any_true(world: &SimpleCommunicator, v: bool) -> bool {
     sum_u64(world, u64::from(v)) > 0

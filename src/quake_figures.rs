@@ -18,10 +18,12 @@
 //!
 //! The three interface tables `fig15/16/17_*.csv` hold the same rows (one per interface element).
 //!
-//! **Sampling.** The histories are sampled at the results steps of the earthquake stage, i.e.
-//! every `output_every` time steps (`earthquake: { output_every: N }`; every step with
-//! `output_every: 1`), plus t = 0, the state before the quake (the end of the stage before it).
-//! Each history CSV states its sampling in a `#` comment line above the header.
+//! **Sampling.** The probe histories (Figs. 14, 18–20) are those of every time step of a run
+//! ([`crate::quake_probes`]); the residual state is that of the results steps before and after
+//! the quake, and histories drawn from results files alone are sampled at their results steps,
+//! every `output_every` time steps (`earthquake: { output_every: N }`), plus t = 0, the state
+//! before the quake (the end of the stage before it). Each history CSV states its sampling in a
+//! `#` comment line above the header.
 //!
 //! Conventions are those of [`crate::profiles`] (central section, slab frame, tension +,
 //! interface jump cushion relative to slab, δ_n > 0 opening, σ_n compression +).
@@ -30,9 +32,10 @@ use crate::io::compare::{open, stage_name, step_names};
 use crate::mesh::Mesh;
 use crate::plot::{Figure, Panel, Series};
 use crate::profiles::{
-    body_nodes, centre, elements_with_prefix, elevation_groups, probe_element, section_y, slab_frame,
-    slab_profile, stress_tensor, ProbeElement, ProfilesSpec, StageFields,
+    body_nodes, centre, elements_with_prefix, elevation_groups, section_y, slab_profile, ProfilesSpec,
+    StageFields,
 };
+use crate::quake_probes::{probe_elements, write_probe_figures, ProbeHistory, QuakeProbe};
 use crate::scene::Scene;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -62,7 +65,7 @@ impl QuakeFields {
     }
 
     /// The sampling note of the history tables (module docs).
-    fn sampling(&self) -> String {
+    pub(crate) fn sampling(&self) -> String {
         let every = match self.output_every {
             0 => "at the stage's end only".to_string(),
             n => format!(
@@ -77,12 +80,12 @@ impl QuakeFields {
     }
 
     /// Times with t = 0 (before the quake) first.
-    fn times(&self) -> impl Iterator<Item = f64> + '_ {
+    pub(crate) fn times(&self) -> impl Iterator<Item = f64> + '_ {
         std::iter::once(0.0).chain(self.t.iter().copied())
     }
 
     /// States with the one before the quake first.
-    fn states(&self) -> impl Iterator<Item = &StageFields> + '_ {
+    pub(crate) fn states(&self) -> impl Iterator<Item = &StageFields> + '_ {
         std::iter::once(&self.before).chain(self.steps.iter())
     }
 }
@@ -140,7 +143,7 @@ pub fn read_quake_fields(scene: &Scene, h5s: &[PathBuf]) -> Result<Option<QuakeF
 
 /// `t` snapped to the nearest multiple of `dt` when within 1e-6·dt of it (a step's time is
 /// stored as a fraction of the stage).
-fn on_time_grid(t: f64, dt: f64) -> f64 {
+pub(crate) fn on_time_grid(t: f64, dt: f64) -> f64 {
     let n = (t / dt).round();
     if (t - n * dt).abs() <= 1e-6 * dt {
         n * dt
@@ -221,7 +224,7 @@ pub fn section_outline(mesh: &Mesh, spec: &ProfilesSpec) -> Vec<usize> {
 }
 
 /// Writes `text` as `dir/name` and records the path.
-fn csv_out(dir: &Path, files: &mut Vec<PathBuf>, name: &str, text: String) -> Result<(), String> {
+pub(crate) fn csv_out(dir: &Path, files: &mut Vec<PathBuf>, name: &str, text: String) -> Result<(), String> {
     let path = dir.join(name);
     std::fs::write(&path, text).map_err(|e| format!("{}: {e}", path.display()))?;
     files.push(path);
@@ -229,7 +232,12 @@ fn csv_out(dir: &Path, files: &mut Vec<PathBuf>, name: &str, text: String) -> Re
 }
 
 /// Saves `figure` as `dir/name` and records the path.
-fn png_out(dir: &Path, files: &mut Vec<PathBuf>, name: &str, figure: Figure) -> Result<(), String> {
+pub(crate) fn png_out(
+    dir: &Path,
+    files: &mut Vec<PathBuf>,
+    name: &str,
+    figure: Figure,
+) -> Result<(), String> {
     let path = dir.join(name);
     figure.save_png(&path).map_err(|e| e.to_string())?;
     files.push(path);
@@ -237,7 +245,7 @@ fn png_out(dir: &Path, files: &mut Vec<PathBuf>, name: &str, figure: Figure) -> 
 }
 
 /// A probe name made safe for a file name.
-fn safe_name(name: &str) -> String {
+pub(crate) fn safe_name(name: &str) -> String {
     name.chars()
         .map(|c| {
             if c.is_ascii_alphanumeric() || c == '-' {
@@ -349,130 +357,6 @@ fn fig13(
 }
 
 /// Fig. 14: stress history of a slab probe element `e`.
-fn fig14(
-    mesh: &Mesh,
-    name: &str,
-    e: usize,
-    q: &QuakeFields,
-    dir: &Path,
-    files: &mut Vec<PathBuf>,
-) -> Result<(), String> {
-    let frame = slab_frame(&mesh.element_coords(e));
-    let mut csv = format!("{}\nt_s,sigma_slope_Pa,sigma_axis_Pa\n", q.sampling());
-    let (mut s, mut a) = (Vec::new(), Vec::new());
-    for (t, f) in q.times().zip(q.states()) {
-        let sig = stress_tensor(&f.stress[6 * e..6 * e + 6]);
-        let (ss, sa) = (frame.s.dot(&(sig * frame.s)), frame.a.dot(&(sig * frame.a)));
-        let _ = writeln!(csv, "{t},{ss},{sa}");
-        s.push((t, ss / 1e6));
-        a.push((t, sa / 1e6));
-    }
-    let safe = safe_name(name);
-    csv_out(dir, files, &format!("fig14_slab_probe_{safe}.csv"), csv)?;
-    let z = centre(mesh, e)[2];
-    let fig = Figure::new(format!("Slab element {name} at z = {z:.0} m (seed Fig. 14)"))
-        .with(
-            Panel::new("Stress along the slope (tension +)", "t (s)", "sigma_s (MPa)")
-                .with(Series::line("", s)),
-        )
-        .with(
-            Panel::new("Stress along the dam axis (tension +)", "t (s)", "sigma_a (MPa)")
-                .with(Series::line("", a)),
-        )
-        .columns(1);
-    png_out(dir, files, &format!("fig14_slab_probe_{safe}.png"), fig)
-}
-
-/// One interface element's state: σ_n (compression +), τ_s, τ_a, δ_s, δ_a, δ_n, opening.
-fn interface_state(f: &StageFields, e: usize) -> [f64; 7] {
-    let t = &f.interface_traction[3 * e..3 * e + 3];
-    let d = &f.interface_jump[3 * e..3 * e + 3];
-    // + 0.0 turns the −0 of an unloaded element into 0
-    [-t[2] + 0.0, t[0], t[1], d[0], d[1], d[2], f.interface_opening[e]]
-}
-
-/// Figs. 18–19: stress and displacement history of an interface probe element `e`.
-fn fig18(
-    mesh: &Mesh,
-    name: &str,
-    e: usize,
-    q: &QuakeFields,
-    dir: &Path,
-    files: &mut Vec<PathBuf>,
-) -> Result<(), String> {
-    let mut csv = format!(
-        "{}\nt_s,sigma_n_Pa,tau_s_Pa,tau_a_Pa,delta_s_m,delta_a_m,delta_n_m,opening_m\n",
-        q.sampling()
-    );
-    let mut cols: [Vec<(f64, f64)>; 7] = Default::default();
-    for (t, f) in q.times().zip(q.states()) {
-        let v = interface_state(f, e);
-        let row: Vec<String> = v.iter().map(|x| x.to_string()).collect();
-        let _ = writeln!(csv, "{t},{}", row.join(","));
-        let scale = [1e-3, 1e-3, 1e-3, 1e3, 1e3, 1e3, 1e3];
-        for (c, col) in cols.iter_mut().enumerate() {
-            col.push((t, v[c] * scale[c]));
-        }
-    }
-    let safe = safe_name(name);
-    csv_out(dir, files, &format!("fig18_interface_probe_{safe}.csv"), csv)?;
-    let [sn, ts, ta, ds, da, dn, op] = cols;
-    let z = centre(mesh, e)[2];
-    let fig = Figure::new(format!(
-        "Interface element {name} at z = {z:.0} m (seed Figs. 18-20)"
-    ))
-    .with(
-        Panel::new("Stresses", "t (s)", "kPa")
-            .with(Series::line("sigma_n (compression +)", sn))
-            .with(Series::line("tau_s (slope)", ts))
-            .with(Series::line("tau_a (axis)", ta)),
-    )
-    .with(
-        Panel::new("Displacements (cushion relative to slab)", "t (s)", "mm")
-            .with(Series::line("delta_s (up-slope)", ds))
-            .with(Series::line("delta_a (axis)", da))
-            .with(Series::line("delta_n (opening +)", dn)),
-    )
-    .with(Panel::new("Opening", "t (s)", "mm").with(Series::line("", op)))
-    .columns(1);
-    png_out(dir, files, &format!("fig18_interface_probe_{safe}.png"), fig)
-}
-
-/// Fig. 20: opening history of every interface probe (`probes`: name, element).
-fn fig20(
-    probes: &[(String, usize)],
-    q: &QuakeFields,
-    dir: &Path,
-    files: &mut Vec<PathBuf>,
-) -> Result<(), String> {
-    let names: Vec<String> = probes
-        .iter()
-        .map(|(n, _)| format!("opening_{}_m", safe_name(n)))
-        .collect();
-    let mut csv = format!("{}\nt_s,{}\n", q.sampling(), names.join(","));
-    for (t, f) in q.times().zip(q.states()) {
-        let row: Vec<String> = probes
-            .iter()
-            .map(|(_, e)| f.interface_opening[*e].to_string())
-            .collect();
-        let _ = writeln!(csv, "{t},{}", row.join(","));
-    }
-    csv_out(dir, files, "fig20_opening.csv", csv)?;
-    let mut panel = Panel::new("Slab-cushion opening", "t (s)", "opening (mm)");
-    for (name, e) in probes {
-        let points = q
-            .times()
-            .zip(q.states())
-            .map(|(t, f)| (t, f.interface_opening[*e] * 1e3))
-            .collect();
-        panel.push(Series::line(name.clone(), points));
-    }
-    let fig = Figure::new("Opening history of the interface probes (seed Fig. 20)")
-        .with(panel)
-        .columns(1);
-    png_out(dir, files, "fig20_opening.png", fig)
-}
-
 /// Figs. 15–17: the residual interface state of every interface element, as a table and as
 /// plots over the unfolded face (y along the axis, z up).
 fn figs15_17(
@@ -608,24 +492,20 @@ fn slip_vectors(mesh: &Mesh, iface: &[usize], res: &StageFields) -> Figure {
         .columns(1)
 }
 
-/// The (name, element) of the slab probes and of the interface probes.
-type Located = (Vec<(String, usize)>, Vec<(String, usize)>);
-
-/// Finds the probes' elements and writes `quake_probes.csv`; probes without elements of their
-/// kind are left out.
-fn locate_probes(
+/// The probes' elements (`quake_probes.csv`, [`crate::quake_probes::probe_elements`]).
+fn write_probe_table(
     mesh: &Mesh,
     spec: &ProfilesSpec,
+    probes: &[QuakeProbe],
     dir: &Path,
     files: &mut Vec<PathBuf>,
-) -> Result<Located, String> {
+) -> Result<(), String> {
     let mut csv = String::from("name,element,at,element_id,x_m,y_m,z_m\n");
-    let (mut slab, mut iface) = (Vec::new(), Vec::new());
-    for probe in &spec.probes {
-        let Some(e) = probe_element(mesh, spec, probe) else {
+    for p in probes {
+        let Some(probe) = spec.probes.iter().find(|q| q.name == p.name) else {
             continue;
         };
-        let c = centre(mesh, e);
+        let c = centre(mesh, p.element);
         let kind = serde_json::to_value(probe.element).map_err(|e| e.to_string())?;
         let at = serde_json::to_value(probe.at).map_err(|e| e.to_string())?;
         let _ = writeln!(
@@ -634,53 +514,56 @@ fn locate_probes(
             probe.name,
             kind.as_str().unwrap_or_default(),
             at.as_str().unwrap_or_default(),
-            mesh.elements[e].id,
+            mesh.elements[p.element].id,
             c[0],
             c[1],
             c[2]
         );
-        match probe.element {
-            ProbeElement::Slab => slab.push((probe.name.clone(), e)),
-            ProbeElement::Interface => iface.push((probe.name.clone(), e)),
-        }
     }
-    csv_out(dir, files, "quake_probes.csv", csv)?;
-    Ok((slab, iface))
+    csv_out(dir, files, "quake_probes.csv", csv)
 }
 
 /// Writes the tables and plots of the module docs into `dir` from the closed results files `h5s`
-/// (the parts of a run, [`read_quake_fields`]); returns the files written (none when no quake
-/// is found or the mesh has no face slab).
+/// (the parts of a run, [`read_quake_fields`]) and the probes' state at every time step
+/// (`steps`, [`crate::solver::SolveReport::probes`]; when empty or not of these probes, the
+/// probe histories are read at the results steps); returns the files written (none when no
+/// quake is found or the mesh has no face slab; the probe histories alone when the results
+/// lack the state before the quake, as those of a run restarted inside it do).
 pub fn write_quake_figures(
     scene: &Scene,
     spec: &ProfilesSpec,
     h5s: &[PathBuf],
+    steps: &[Vec<f64>],
     dir: &Path,
 ) -> Result<Vec<PathBuf>, String> {
     // without a face slab (no central section) none of the seed's dam figures applies
     if section_y(&scene.mesh, spec).is_none() {
         return Ok(Vec::new());
     }
-    let Some(q) = read_quake_fields(scene, h5s)? else {
-        return Ok(Vec::new());
-    };
     let mesh = &scene.mesh;
     let mut files = Vec::new();
-    fig12(mesh, spec, &q, dir, &mut files)?;
-    fig13(mesh, spec, &q, dir, &mut files)?;
-    let has_interfaces = !q.before.interface_jump.is_empty() && !q.after().interface_jump.is_empty();
-    if has_interfaces {
-        figs15_17(mesh, spec, &q, dir, &mut files)?;
-    }
-    let (slab, iface) = locate_probes(mesh, spec, dir, &mut files)?;
-    for (name, e) in &slab {
-        fig14(mesh, name, *e, &q, dir, &mut files)?;
-    }
-    if has_interfaces && !iface.is_empty() {
-        for (name, e) in &iface {
-            fig18(mesh, name, *e, &q, dir, &mut files)?;
+    let q = read_quake_fields(scene, h5s)?;
+    if let Some(q) = &q {
+        fig12(mesh, spec, q, dir, &mut files)?;
+        fig13(mesh, spec, q, dir, &mut files)?;
+        if !q.before.interface_jump.is_empty() && !q.after().interface_jump.is_empty() {
+            figs15_17(mesh, spec, q, dir, &mut files)?;
         }
-        fig20(&iface, &q, dir, &mut files)?;
+    }
+    // a run restarted inside the quake lacks the state before it in its results, but its
+    // probe histories are whole
+    let probes = probe_elements(mesh, spec);
+    let stage = scene
+        .stages
+        .iter()
+        .find(|s| s.dynamic.is_some())
+        .map(|s| s.name.as_str());
+    let history = stage
+        .and_then(|stage| ProbeHistory::from_steps(stage, &probes, steps))
+        .or_else(|| q.as_ref().map(|q| ProbeHistory::from_results(q, &probes)));
+    if let Some(h) = history {
+        write_probe_table(mesh, spec, &probes, dir, &mut files)?;
+        write_probe_figures(mesh, &probes, &h, dir, &mut files)?;
     }
     Ok(files)
 }

@@ -11,7 +11,7 @@ use crate::parallel::{any_error, broadcast_vec, EXIT_INPUT, EXIT_IO, EXIT_SOLVER
 use crate::scene::schema::CheckpointMode;
 use crate::scene::Scene;
 use crate::solver::discretization::Discretization;
-use crate::solver::{mesh_cells, LocalResults, Problem, SolveReport, StepControl};
+use crate::solver::{mesh_cells, LocalResults, Problem, SolveError, SolveReport, StepControl};
 use mpi::topology::{Communicator, SimpleCommunicator};
 use partition::{partition_elements_by_band, Partition, PartitionFile};
 use std::path::{Path, PathBuf};
@@ -56,6 +56,10 @@ pub struct RunOptions {
     /// not part of the scene's hash, so a run continued with step checkpoints still restarts
     /// from its stage checkpoints).
     pub checkpoint: Option<CheckpointMode>,
+    /// With step checkpoints: write them after every N-th converged load step of the run only
+    /// (`--checkpoint-every`; counted by the run's converged steps, which a checkpoint keeps,
+    /// so a restarted run writes them where the uninterrupted one does). `None`: every step.
+    pub checkpoint_every: Option<u32>,
     /// Print every Newton iteration's residual and the reason and place of every cut-back
     /// (`--monitor`), as the scene's `solver.monitor` does, without changing the scene (its
     /// hash), so a run restarted from a checkpoint can be watched.
@@ -233,6 +237,7 @@ pub fn run_scene(
         None => !scene.file.stages.is_empty(),
     };
     let step_checkpoints = mode == Some(CheckpointMode::Step);
+    let checkpoint_every = opts.checkpoint_every.unwrap_or(1).max(1);
     let stop_after_stage = opts.stop_after_stage.map(|s| match s {
         StopAfter::Stage(k) => k,
         StopAfter::Stages(n) => (first_stage + n).min(scene.stages.len()),
@@ -278,9 +283,10 @@ pub fn run_scene(
     let mut modal = None;
     // without a terminal (nohup, a cluster job's log) the bar is not drawn: a line per load step
     let step_lines = rank == 0 && opts.verbose && !std::io::IsTerminal::is_terminal(&std::io::stderr());
-    // the crest's motion is recorded at every step of the first dynamic stage (crate::quake)
+    // the crest's motion and the probes are recorded at every step of the first dynamic stage
+    // (crate::quake, crate::quake_probes)
     let first_dynamic = scene.stages.iter().position(|s| s.dynamic.is_some());
-    let crest = crate::quake::crest_node(scene);
+    let recorder = QuakeRecorder::new(scene);
     for (k, stage) in scene.stages.iter().enumerate().skip(first_stage) {
         let stage_start = Instant::now();
         say(&format!(
@@ -290,6 +296,7 @@ pub fn run_scene(
             stage.load_steps
         ));
         // the stage of a step checkpoint continues where it stood (restore resumed it)
+        let fresh = resume.is_none();
         let mut path = match resume.take() {
             Some(p) => p,
             None => {
@@ -314,17 +321,20 @@ pub fn run_scene(
         };
         let mut steps_in_stage = 0u32;
         let bar = progress_bar(rank == 0 && opts.verbose, stage.load_steps as u64);
-        let mut solved = Ok(());
+        let quake = Some(k) == first_dynamic;
+        let mut solved = if quake && fresh {
+            recorder.record_start(&mut problem, &mut report)
+        } else {
+            Ok(())
+        };
         while solved.is_ok() && !path.done() {
             solved = problem.advance(&mut path, sopts.max_cutbacks, &mut report);
             if solved.is_err() {
                 break;
             }
             steps_in_stage += 1;
-            if Some(k) == first_dynamic {
-                solved = problem
-                    .node_motion(crest, path.t)
-                    .map(|row| report.crest.push(row));
+            if quake {
+                solved = recorder.record_step(&mut problem, path.t, &mut report);
                 if solved.is_err() {
                     break;
                 }
@@ -350,7 +360,7 @@ pub fn run_scene(
                 write_results(world, &mut problem, &mut file, info, has_interfaces)?;
                 timer.stop();
             }
-            if step_checkpoints && !path.done() {
+            if step_checkpoints && !path.done() && report.steps.is_multiple_of(checkpoint_every) {
                 timer.start(Phase::Output);
                 ckpt_seconds += write_checkpoint(world, &ckpt, scene, &problem, &report, Some(path))?;
                 timer.stop();
@@ -406,7 +416,7 @@ pub fn run_scene(
         code: EXIT_IO,
         message: format!("writing results: {m}"),
     })?;
-    write_quake(world, scene, &h5, &report.crest, &out_dir, failure.as_deref())?;
+    write_quake(world, scene, &h5, &report, &out_dir, failure.as_deref())?;
     // the profiles need at least one completed stage; a failure to write them never hides the
     // failure of a stage
     match &scene.file.output.profiles {
@@ -543,7 +553,7 @@ fn write_quake(
     world: &SimpleCommunicator,
     scene: &Scene,
     h5: &Path,
-    crest: &[[f64; 10]],
+    report: &SolveReport,
     out_dir: &Path,
     failure: Option<&str>,
 ) -> Result<(), RunFailure> {
@@ -552,10 +562,14 @@ fn write_quake(
     }
     let written = if world.rank() == 0 {
         let spec = scene.file.output.profiles.clone().unwrap_or_default();
-        crate::quake::write_quake_outputs(scene, h5, crest, out_dir).and_then(|mut files| {
+        crate::quake::write_quake_outputs(scene, h5, &report.crest, out_dir).and_then(|mut files| {
             let parts = [h5.to_path_buf()];
             files.extend(crate::quake_figures::write_quake_figures(
-                scene, &spec, &parts, out_dir,
+                scene,
+                &spec,
+                &parts,
+                &report.probes,
+                out_dir,
             )?);
             Ok(files)
         })
@@ -569,6 +583,62 @@ fn write_quake(
             None => format!("writing the earthquake outputs: {m}"),
         },
     })
+}
+
+/// What a run records at every time step of its first dynamic stage: the crest's motion
+/// ([`crate::quake`]) and the probes' state ([`crate::quake_probes`]), into the run's report.
+struct QuakeRecorder {
+    crest: usize,
+    probes: Vec<crate::quake_probes::QuakeProbe>,
+    /// The time step of the first dynamic stage: the probes' times are put on its grid, as
+    /// those of the results steps are ([`crate::quake_figures::on_time_grid`]).
+    dt: f64,
+}
+
+impl QuakeRecorder {
+    fn new(scene: &Scene) -> Self {
+        let spec = scene.file.output.profiles.clone().unwrap_or_default();
+        let dt = scene
+            .stages
+            .iter()
+            .find_map(|s| s.dynamic.as_ref())
+            .map_or(0.0, |d| d.duration / d.steps.max(1) as f64);
+        QuakeRecorder {
+            crest: crate::quake::crest_node(scene),
+            probes: crate::quake_probes::probe_elements(&scene.mesh, &spec),
+            dt,
+        }
+    }
+
+    /// The probes at t = 0, the state before the quake. Collective.
+    fn record_start(&self, problem: &mut Problem, report: &mut SolveReport) -> Result<(), SolveError> {
+        report.probes.clear();
+        self.record_probes(problem, 0.0, report)
+    }
+
+    /// The crest and the probes after a converged step at time `t`. Collective.
+    fn record_step(&self, problem: &mut Problem, t: f64, report: &mut SolveReport) -> Result<(), SolveError> {
+        report.crest.push(problem.node_motion(self.crest, t)?);
+        let on_grid = crate::quake_figures::on_time_grid(t, self.dt);
+        self.record_probes(problem, on_grid, report)
+    }
+
+    fn record_probes(
+        &self,
+        problem: &mut Problem,
+        t: f64,
+        report: &mut SolveReport,
+    ) -> Result<(), SolveError> {
+        if self.probes.is_empty() {
+            return Ok(());
+        }
+        let elements: Vec<usize> = self.probes.iter().map(|p| p.element).collect();
+        let states = problem.element_states(&elements)?;
+        report
+            .probes
+            .push(crate::quake_probes::probe_row(t, &self.probes, &states));
+        Ok(())
+    }
 }
 
 /// Writes the mode shapes of `modes` into `modes.h5` / `modes.xdmf` of `out_dir`, one step

@@ -368,6 +368,27 @@ fn a_bad_integration_tolerance_ratio_on_the_command_line_exits_2() {
     assert!(!dir.path().join("out/results.h5").exists());
 }
 
+/// `--checkpoint-every` takes a count ≥ 1 and step checkpoints only: exit 2 naming the flag on
+/// both ranks, nothing written.
+#[test]
+fn a_bad_checkpoint_interval_on_the_command_line_exits_2() {
+    let dir = tempdir();
+    std::fs::write(dir.path().join("scene.yaml"), GOOD).unwrap();
+    for extra in [
+        &["--checkpoint-every", "0"][..],
+        &["--checkpoint-every", "5", "--checkpoint", "none"],
+    ] {
+        let mut args = vec!["run", "scene.yaml", "-o", "out"];
+        args.extend(extra);
+        let o = cfrd_mpi(2, dir.path(), &args);
+        let msg = text(&o);
+        assert_eq!(o.status.code(), Some(2), "{extra:?}: {msg}");
+        assert!(msg.contains("--checkpoint-every"), "{msg}");
+        assert!(!msg.contains("panicked"), "{msg}");
+        assert!(!dir.path().join("out/results.h5").exists());
+    }
+}
+
 /// `cfrd compare --tolerance` takes a finite number ≥ 0 only.
 #[test]
 fn a_compare_tolerance_that_is_not_a_finite_non_negative_number_exits_2() {

@@ -339,21 +339,33 @@ fn the_committed_seed_record_is_reproduced_by_cfrd_accel() {
 fn a_quake_killed_twice_restarts_bitwise_from_its_step_checkpoints() {
     killed_twice_restarts_bitwise(
         "{ record: record.csv, damping: { ratio: 0.05, frequencies: [1.0, 5.0] }, output_every: 50 }",
+        &[],
     );
 }
 
 #[test]
 fn an_hht_quake_killed_twice_restarts_bitwise_with_its_force_history() {
     // HHT-α carries h = C·v + f_int − f_ext from step to step: the checkpoint must hold it
+    // and with checkpoints after every 7th step only (the uninterrupted run takes the same
+    // flag, so its factors are renewed at the same steps)
     killed_twice_restarts_bitwise(
         "{ record: record.csv, hht_alpha: -0.1, damping: { ratio: 0.05, frequencies: [1.0, 5.0] }, output_every: 50 }",
+        &["--checkpoint-every", "7"],
     );
 }
 
+/// The converged steps of the run in checkpoint `ckpt` (its stored counters).
+fn checkpoint_steps(ckpt: &Path) -> u64 {
+    let f = hdf5::File::open(ckpt).unwrap();
+    let json = f.dataset("checkpoint/report").unwrap().read_raw::<u8>().unwrap();
+    let report: serde_json::Value = serde_json::from_slice(&json).unwrap();
+    report["steps"].as_u64().expect("steps in the report")
+}
+
 /// The column under a decaying 1.3 Hz record integrated with `dynamic`, run on 2 ranks with
-/// step checkpoints, killed in the quake twice and restarted: its results equal those of the
-/// uninterrupted run bit for bit.
-fn killed_twice_restarts_bitwise(dynamic: &str) {
+/// step checkpoints and the extra arguments `extra` (all runs), killed in the quake twice and
+/// restarted: its results equal those of the uninterrupted run bit for bit.
+fn killed_twice_restarts_bitwise(dynamic: &str, extra: &[&str]) {
     let _turn = mpi_turn();
     let dir = tempdir();
     let d = dir.path();
@@ -367,13 +379,23 @@ fn killed_twice_restarts_bitwise(dynamic: &str) {
         yaml.replace("units: SI", "units: SI\noutput: { checkpoint: step }"),
     )
     .unwrap();
-    run(2, d, "full");
-    common::run_and_kill(d, "column.yaml", "k1", None, 0.8);
-    common::run_and_kill(d, "column.yaml", "k2", Some("k1/checkpoint.h5"), 1.6);
+    let mut args = vec!["run", "column.yaml", "-o", "full", "-q"];
+    args.extend(extra);
+    let o = cfrd_mpi(2, d, &args);
+    assert!(o.status.success(), "{}", text(&o));
+    common::run_and_kill_with(d, "column.yaml", "k1", None, 0.8, extra);
+    common::run_and_kill_with(d, "column.yaml", "k2", Some("k1/checkpoint.h5"), 1.6, extra);
     let t =
         common::time_in_second_stage(&d.join("k2/checkpoint.h5")).expect("a step checkpoint in the shake");
     eprintln!("second kill at t = {t} s");
-    common::restart_matches_bitwise(d, "column.yaml", "k2/checkpoint.h5", "rest", "full");
+    if let [_, every] = extra {
+        // the checkpoint the run was killed after lies on a multiple of N converged steps
+        let every: u64 = every.parse().unwrap();
+        let steps = checkpoint_steps(&d.join("k2/checkpoint.h5"));
+        assert_eq!(steps % every, 0, "checkpoint after {steps} steps");
+        assert!(steps > every, "{steps}");
+    }
+    common::restart_matches_bitwise_with(d, "column.yaml", "k2/checkpoint.h5", "rest", "full", extra);
     let last = |out: &str| {
         let h = top_history(&d.join(out), 0.5);
         (h.displacement.last().copied(), h.acceleration.last().copied())
@@ -414,7 +436,7 @@ fn a_plastic_dam_quake_is_the_same_bit_for_bit_on_1_and_2_ranks() {
     let _turn = mpi_turn();
     let dir = tempdir();
     let d = dir.path();
-    gp_interface_dam_quake(d, 0.3, "", 10);
+    gp_interface_dam_quake(d, 0.3, &format!("output: {{ profiles: {PROBES} }}\n"), 10);
     for (np, out) in [(2, "out2"), (1, "out1")] {
         let o = cfrd_mpi(np, d, &["run", "dam.yaml", "-o", out, "-q"]);
         assert!(o.status.success(), "{np} rank(s): {}", text(&o));
@@ -429,6 +451,46 @@ fn a_plastic_dam_quake_is_the_same_bit_for_bit_on_1_and_2_ranks() {
     let crest = |out: &str| std::fs::read_to_string(d.join(out).join("quake_crest.csv")).unwrap();
     assert_eq!(crest("out2"), crest("out1"), "the crest history on 1 and 2 ranks");
     check_crest_history(&crest("out2"), 0.3, 10);
+    check_probe_histories(&d.join("out2"), &d.join("out1"), 0.3);
+}
+
+/// Probes of the seed's Figs. 14, 18–20 (`output.profiles`) on the small dam.
+const PROBES: &str = "{ probes: [ { name: I-B, elevation: 2809.0, at: left_bank }, \
+    { name: I-D, elevation: 2852.0 }, { name: F-A, elevation: 2813.0, element: slab } ] }";
+
+/// The probe histories of runs `a` and `b` of a quake of `duration` s at Δt = 0.01 s are the
+/// same byte for byte, with a row at t = 0 and at every time step to the end (a step cut back
+/// adds rows; [`cfrd::quake_probes`]).
+fn check_probe_histories(a: &Path, b: &Path, duration: f64) {
+    let steps = (duration / 0.01).round() as usize;
+    for name in [
+        "fig14_slab_probe_F-A.csv",
+        "fig18_interface_probe_I-B.csv",
+        "fig18_interface_probe_I-D.csv",
+        "fig20_opening.csv",
+    ] {
+        let read = |dir: &Path| {
+            std::fs::read_to_string(dir.join(name))
+                .unwrap_or_else(|e| panic!("{}/{name}: {e}", dir.display()))
+        };
+        assert_eq!(read(a), read(b), "{name}");
+        let t: Vec<f64> = read(a)
+            .lines()
+            .skip(2)
+            .map(|l| l.split(',').next().unwrap().parse().unwrap())
+            .collect();
+        assert_eq!(t[0], 0.0, "{name}");
+        assert!(t.windows(2).all(|w| w[1] > w[0]), "{name}: increasing times");
+        assert!(
+            (t[t.len() - 1] - duration).abs() < 1e-9,
+            "{name}: ends at {duration} s"
+        );
+        assert!(
+            t.len() > steps,
+            "{name}: a row per time step and t = 0: {}",
+            t.len()
+        );
+    }
 }
 
 /// The crest history of `quake_crest.csv` ([`cfrd::quake`]) of a quake of `duration` s at
@@ -469,7 +531,8 @@ fn a_plastic_dam_quake_killed_twice_restarts_bitwise() {
     let _turn = mpi_turn();
     let dir = tempdir();
     let d = dir.path();
-    gp_interface_dam_quake(d, 0.6, "output: { checkpoint: step }\n", 5);
+    let output = format!("output: {{ checkpoint: step, profiles: {PROBES} }}\n");
+    gp_interface_dam_quake(d, 0.6, &output, 5);
     let o = cfrd_mpi(2, d, &["run", "dam.yaml", "-o", "full", "-q"]);
     assert!(o.status.success(), "{}", text(&o));
     common::run_and_kill(d, "dam.yaml", "k1", None, 0.15);
@@ -481,4 +544,5 @@ fn a_plastic_dam_quake_killed_twice_restarts_bitwise() {
     let crest = |out: &str| std::fs::read_to_string(d.join(out).join("quake_crest.csv")).unwrap();
     assert_eq!(crest("rest"), crest("full"), "the restarted run's crest history");
     check_crest_history(&crest("rest"), 0.6, 5);
+    check_probe_histories(&d.join("rest"), &d.join("full"), 0.6);
 }

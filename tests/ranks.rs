@@ -79,6 +79,44 @@ fn one_two_and_three_ranks_agree() {
     }
 }
 
+/// `cfrd partition`'s report: its element and owned-node totals are the mesh's, split over
+/// `parts` parts, and on more than one part some nodes are ghosts.
+fn check_partition_statistics(report: &str, parts: usize) {
+    let word_before = |line: &str, w: &str| -> usize {
+        let words: Vec<&str> = line
+            .split([' ', ',', '(', ')'])
+            .filter(|x| !x.is_empty())
+            .collect();
+        let i = words
+            .iter()
+            .position(|x| *x == w)
+            .unwrap_or_else(|| panic!("{w} in {line}"));
+        words[i - 1].parse().unwrap_or_else(|e| panic!("{line}: {e}"))
+    };
+    let first = report.lines().next().unwrap();
+    assert!(first.contains(&format!("in {parts} parts")), "{report}");
+    let total = |what: &str| -> usize {
+        let line = report.lines().find(|l| l.trim_start().starts_with(what)).unwrap();
+        line.rsplit("total ")
+            .next()
+            .unwrap()
+            .trim_end_matches(')')
+            .parse()
+            .unwrap()
+    };
+    assert_eq!(
+        total("elements per part"),
+        word_before(first, "elements"),
+        "{report}"
+    );
+    assert_eq!(
+        total("owned nodes per part"),
+        word_before(first, "nodes"),
+        "{report}"
+    );
+    assert!(total("ghost nodes per part") > 0, "{report}");
+}
+
 #[test]
 fn partition_ahead_of_time_gives_the_same_results() {
     let dir = tempdir();
@@ -88,7 +126,7 @@ fn partition_ahead_of_time_gives_the_same_results() {
         &["partition", "scene.yaml", "-n", "2", "-o", "scene.part.json"],
     );
     assert!(o.status.success(), "{}", text(&o));
-    assert!(text(&o).contains("in 2 parts"), "{}", text(&o));
+    check_partition_statistics(&text(&o), 2);
     std::fs::write(
         dir.path().join("pre.yaml"),
         format!("{SCENE}partition: scene.part.json\n"),

@@ -35,7 +35,17 @@ pub struct SolveReport {
     /// the ground's (m/s²). Kept in step checkpoints, so a restarted run has the whole history.
     #[serde(default)]
     pub crest: Vec<[f64; 10]>,
+    /// The probes' state at t = 0 of the first dynamic stage and at every converged time step
+    /// of it ([`crate::quake_figures`], seed Figs. 14, 18–20): the time (s), then the values of
+    /// each probe in the order of [`crate::quake_figures::probe_elements`]. Kept in step
+    /// checkpoints like [`SolveReport::crest`].
+    #[serde(default)]
+    pub probes: Vec<Vec<f64>>,
 }
+
+/// Values per element of [`crate::solver::Problem::element_states`]: mean stress (6), interface
+/// traction (3), mean jump (3), opening (1).
+pub const ELEMENT_STATE: usize = 13;
 
 /// Counts of interface points in the committed state (all ranks).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]

@@ -5,7 +5,7 @@ use super::error::SolveError;
 use super::loads::add_placement_force;
 use super::model::BlockStates;
 use super::problem::Problem;
-use super::report::{LocalResults, NodeMotion};
+use super::report::{LocalResults, NodeMotion, ELEMENT_STATE};
 use super::solid::Vector24;
 use crate::tensor::{Strain6, Stress6};
 
@@ -34,6 +34,38 @@ impl Problem<'_> {
             self.element_result(i, &ue, &mut out);
         }
         Ok(out)
+    }
+
+    /// The committed state of the elements `elements` (mesh indices), [`ELEMENT_STATE`] values
+    /// each: mean stress (6, Voigt, Pa), interface mean traction (τ_s, τ_a, t_n; Pa), mean jump
+    /// since placement (δ_s, δ_a, δ_n; m) and mean opening (m), zeros where they do not apply
+    /// (the fields of [`Problem::results`] for a few elements, e.g. the probes of seed
+    /// Figs. 14, 18–20 at every time step). The same on every rank and rank count. Collective.
+    pub fn element_states(&mut self, elements: &[usize]) -> Result<Vec<f64>, SolveError> {
+        let u_loc = self.model.local_u()?;
+        let model = &self.model;
+        let mut local = Vec::with_capacity(ELEMENT_STATE * elements.len());
+        for &e in elements {
+            let owned = (0..model.disc.elements.len())
+                .find(|&i| model.disc.element_owned[i] && model.disc.elements[i] as usize == e);
+            let mut out = LocalResults::default();
+            if let Some(i) = owned {
+                let loc = &model.disc.element_local[i];
+                let ue = Vector24::from_fn(|k, _| u_loc[3 * loc[k / 3] as usize + k % 3]) - model.elem_ref[i];
+                self.element_result(i, &ue, &mut out);
+            }
+            let stress = out.stress.first().map_or([0.0; 6], |s| s.0.into());
+            let iface = out.interface.first().copied().unwrap_or_default();
+            let jump = out.jump.first().copied().unwrap_or_default();
+            local.extend(stress);
+            local.extend(iface.traction);
+            local.extend(jump);
+            local.push(iface.opening);
+        }
+        // one rank holds each element: the sum adds zeros to its values, exactly (+ 0.0 turns
+        // a −0 into 0 first, which a sum on two ranks would)
+        local.iter_mut().for_each(|v| *v += 0.0);
+        Ok(crate::parallel::sum_f64_slice(self.comm, &local))
     }
 
     /// Displacements (from each node's placement) and reactions of the owned nodes.

@@ -275,7 +275,20 @@ pub fn time_in_dynamic_stage(ckpt: &Path) -> Option<f64> {
 /// Runs `scene` on 2 ranks in `dir` into `out` (restarting from `restart` if given) and kills
 /// it once its step checkpoint is past `t_kill` s of its dynamic stage.
 pub fn run_and_kill(dir: &Path, scene: &str, out: &str, restart: Option<&str>, t_kill: f64) {
+    run_and_kill_with(dir, scene, out, restart, t_kill, &[]);
+}
+
+/// [`run_and_kill`] with the extra command-line arguments `extra`.
+pub fn run_and_kill_with(
+    dir: &Path,
+    scene: &str,
+    out: &str,
+    restart: Option<&str>,
+    t_kill: f64,
+    extra: &[&str],
+) {
     let mut args = vec!["run", scene, "-o", out, "-q"];
+    args.extend(extra);
     if let Some(r) = restart {
         args.extend(["--restart", r]);
     }
@@ -300,7 +313,21 @@ pub fn run_and_kill(dir: &Path, scene: &str, out: &str, restart: Option<&str>, t
 /// results equal those of the uninterrupted run in `full` bit for bit (`cfrd compare
 /// --tolerance 0`).
 pub fn restart_matches_bitwise(dir: &Path, scene: &str, checkpoint: &str, out: &str, full: &str) {
-    let o = cfrd_mpi(2, dir, &["run", scene, "-o", out, "-q", "--restart", checkpoint]);
+    restart_matches_bitwise_with(dir, scene, checkpoint, out, full, &[]);
+}
+
+/// [`restart_matches_bitwise`] with the extra command-line arguments `extra` for the restart.
+pub fn restart_matches_bitwise_with(
+    dir: &Path,
+    scene: &str,
+    checkpoint: &str,
+    out: &str,
+    full: &str,
+    extra: &[&str],
+) {
+    let mut args = vec!["run", scene, "-o", out, "-q", "--restart", checkpoint];
+    args.extend(extra);
+    let o = cfrd_mpi(2, dir, &args);
     assert!(o.status.success(), "{}", text(&o));
     let (a, b) = (format!("{full}/results.h5"), format!("{out}/results.h5"));
     let o = cfrd(dir, &["compare", &a, &b, "--tolerance", "0"]);
