@@ -252,6 +252,66 @@
 //!   cases (on the fine mesh's slab stage II the full step left out-of-balance forces of 4e8 N
 //!   and cut back to λ = 0.004; commit 9d6727b).
 //!
+//! ## Scaling on clusters, on paper
+//!
+//! Issue 20 asks what more ranks would give. Measured inputs, then a projection that is only
+//! as good as its stated assumptions; nothing here was run on more than 2 ranks.
+//!
+//! **Partitions** (`cfrd partition -n P -o FILE SCENE`, commit b16fc90, which prints these
+//! figures; METIS with every construction band balanced over the parts, as `cfrd run` does):
+//!
+//! | mesh | P | elements per part, max / mean | ghost nodes of a part, max | ghost nodes, total | largest ghost / owned nodes of a part | METIS |
+//! |---|---|---|---|---|---|---|
+//! | medium (9,414 elements, 11,717 nodes) | 2 | 4,819 / 4,707 | 437 | 437 | 0.080 | 0.06 s |
+//! | medium | 8 | 1,200 / 1,177 | 882 | 3,064 | 0.83 | 0.19 s |
+//! | medium | 32 | 301 / 294 | 522 | 8,709 | 4.1 | 0.72 s |
+//! | medium | 128 | 79 / 73.5 | 252 | 19,062 | 19.4 | 1.70 s |
+//! | fine (76,502 elements, 85,487 nodes) | 2 | 39,330 / 38,251 | 1,893 | 1,893 | 0.044 | 0.13 s |
+//! | fine | 8 | 9,872 / 9,563 | 2,391 | 11,680 | 0.19 | 0.32 s |
+//! | fine | 32 | 2,470 / 2,391 | 1,726 | 32,090 | 0.46 | 0.75 s |
+//! | fine | 128 | 615 / 598 | 862 | 65,192 | 0.74 | 3.13 s |
+//!
+//! The balance holds (at most 7.5 % over the mean), METIS takes seconds, and the whole process
+//! of `cfrd partition` on the fine mesh (mesh generation, METIS, file) peaks at 74 MiB
+//! (`/usr/bin/time`), which every rank's copy of the global mesh stays below: neither the
+//! global mesh nor METIS on rank 0 limits a run at these sizes. The ghost exchange of an
+//! assembly moves at most 862 × 3 values (21 kB) per rank on 128 parts of the fine mesh. The
+//! medium mesh is too small for 32 ranks or more: its parts there have more ghost than owned
+//! nodes.
+//!
+//! **Work per rank** (medium hyperbolic scene, canonical LU, commit e4f3019; "Parallel
+//! efficiency" above): on 1 rank assembly 440.9 s, linear solves 319.0 s, the rest 8.1 s; on 2
+//! ranks 243.1 s and 321.4 s. The canonical LU factors the whole coupled block on every rank,
+//! so its solve time does not fall with P; the assembly does, 1.81 times on 2 ranks.
+//!
+//! **Projection** for the medium scene on P ranks with the canonical LU: assembly 440.9 s / P
+//! times the partition's max / mean elements times 1.077 (the overhead over that which the
+//! 2-rank run shows: 243.1 = 440.9 / 2 × 1.024 × 1.077), linear solves 321 s, the rest 8 s:
+//!
+//! | P | assembly | total | speed-up over 1 rank |
+//! |---|---|---|---|
+//! | 2 (measured) | 243.1 s | 570.0 s | 1.35 |
+//! | 8 | 60.5 s | 390 s | 1.97 |
+//! | 32 | 15.2 s | 344 s | 2.23 |
+//! | 128 | 4.0 s | 333 s | 2.31 |
+//!
+//! The bound is Amdahl's: 768 / 329 = 2.33 however many ranks. The fine mesh is bound the same
+//! way and harder: from slab stage I on about 80 % of its 2-rank stage time went into the
+//! factorization ("The fine run"), which the canonical LU repeats on every rank, with all of
+//! its memory (10.2 GiB per rank). Its vector gather grows too: every linear solve hands each
+//! rank the whole vector (256,461 values, 2 MB), P × 2 MB per solve over the network.
+//!
+//! **What would limit a cluster run, in order**: (1) the canonical LU, whose work and memory
+//! do not split: the distributed LU splits the memory (a third less per rank on 2 ranks,
+//! "Distributed LU with reused factors" above) but on 2 ranks took 1.24 times as long, and
+//! how MUMPS's parallel factorization of these blocks scales beyond 2 ranks was not measured
+//! (`scripts/solver_choice.sh RUNS P SCENE` measures it on a cluster); (2) no iterative
+//! preconditioner carries the staged dam (GAMG fails, BoomerAMG is 8 times slower than the
+//! LU on the fine mesh's first fill stages, "Linear solvers on the seed dam"), and it is the
+//! only kind that would scale in both work and memory; (3) only after those, the medium mesh's
+//! partition surfaces (more ghost than owned nodes from 32 ranks on). The global mesh on every
+//! rank and METIS on rank 0 cost seconds and tens of MB at the fine size.
+//!
 //! ## Checkpoints
 //!
 //! * Step checkpoints on the coarse hyperbolic scene, 2 ranks (commit 809a854): each starts a
