@@ -36,8 +36,8 @@ pub struct SolveReport {
     #[serde(default)]
     pub crest: Vec<[f64; 10]>,
     /// The probes' state at t = 0 of the first dynamic stage and at every converged time step
-    /// of it ([`crate::quake_figures`], seed Figs. 14, 18–20): the time (s), then the values of
-    /// each probe in the order of [`crate::quake_figures::probe_elements`]. Kept in step
+    /// of it ([`crate::quake_probes`], seed Figs. 14, 18–20): the time (s), then the values of
+    /// each probe in the order of [`crate::quake_probes::probe_elements`]. Kept in step
     /// checkpoints like [`SolveReport::crest`].
     #[serde(default)]
     pub probes: Vec<Vec<f64>>,
