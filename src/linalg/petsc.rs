@@ -721,6 +721,8 @@ pub struct Snes {
     distributed_lu: Option<Box<DistributedLu>>,
     /// Factorizations of canonical solvers already dropped, not yet taken.
     factorizations: u64,
+    /// The direct solvers are set for the Jacobians of a dynamic stage ([`Snes::set_time_stepping`]).
+    time_stepping: bool,
 }
 
 /// The linear solver of the Newton corrections (the scene's `solver.linear_solver`).
@@ -772,9 +774,16 @@ impl Snes {
             canonical_lu: None,
             distributed_lu: None,
             factorizations: 0,
+            time_stepping: false,
         };
         s.configure()?;
         Ok(s)
+    }
+
+    /// Sets the direct solvers up for the Jacobians of a dynamic stage (`true`) or of a static
+    /// one from the next [`Snes::reset`] on ([`super::lagged_lu::LaggedLu::new`]).
+    pub fn set_time_stepping(&mut self, on: bool) {
+        self.time_stepping = on;
     }
 
     /// Replaces the solver by a new one with the same settings: the next solve builds the
@@ -803,10 +812,15 @@ impl Snes {
             self.canonical_lu = Some(CanonicalLu::new(
                 canonical.dofs.clone(),
                 canonical.reuse_factorization,
+                self.time_stepping,
             )?);
         }
         if let LinearMethod::DistributedLu { reuse_factorization } = &self.method {
-            self.distributed_lu = Some(DistributedLu::new(self.comm, *reuse_factorization)?);
+            self.distributed_lu = Some(DistributedLu::new(
+                self.comm,
+                *reuse_factorization,
+                self.time_stepping,
+            )?);
         }
         let s = &*self;
         let (max_it, rtol, ksp_max_it, symmetric) = self.settings;
@@ -1004,7 +1018,7 @@ pub struct CanonicalLu {
 }
 
 impl CanonicalLu {
-    fn new(canonical: Vec<i32>, reuse: bool) -> Result<Box<CanonicalLu>, PetscError> {
+    fn new(canonical: Vec<i32>, reuse: bool, time_stepping: bool) -> Result<Box<CanonicalLu>, PetscError> {
         // SAFETY: a constant handle set by MPI_Init.
         let self_comm = unsafe { mpi::ffi::RSMPI_COMM_SELF };
         Ok(Box::new(CanonicalLu {
@@ -1020,7 +1034,7 @@ impl CanonicalLu {
             reduced: null_mut(),
             reduced_index: Vec::new(),
             diagonal: Vec::new(),
-            inner: LaggedLu::new(self_comm, "canonical_", reuse, None)?,
+            inner: LaggedLu::new(self_comm, "canonical_", reuse, None, time_stepping)?,
             rhs: None,
             solution: None,
         }))

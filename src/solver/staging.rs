@@ -165,6 +165,11 @@ impl Problem<'_> {
     fn fix_for_stage(&mut self) -> Result<(), SolveError> {
         self.constraints
             .for_stage(&self.model.disc, &self.model.node_active, &self.u_stage_start);
+        let dynamic = self.scene.stages[self.stage].dynamic.is_some();
+        self.snes
+            .as_mut()
+            .expect("the nonlinear solver is in place between steps")
+            .set_time_stepping(dynamic);
         self.fresh_preconditioner()
     }
 
