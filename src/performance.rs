@@ -481,7 +481,7 @@
 //! next all over the dam, so the factors of one step's Jacobian are a poor preconditioner for
 //! the next: with the static settings (refactor after 8 GMRES iterations, GMRES to 1e-9) the
 //! solves with lagged factors took 18–27 iterations and the factors were renewed at every
-//! other step (`-canonical_ksp_converged_reason`). Since commit DYNLU a dynamic stage
+//! other step (`-canonical_ksp_converged_reason`). Since commit b351936 a dynamic stage
 //! refactors after 30 iterations and solves to 1e-6, ten times below the seed scenes' Newton
 //! tolerance ([`crate::linalg::lagged_lu`]). The coarse GP quake scene, 2 ranks, one run of
 //! each build after the other, alone on the machine (`/usr/bin/time -v mpirun -n 2 cfrd run
