@@ -210,7 +210,7 @@ pub const DISTRIBUTED_LU_NAME: &[u8] = b"distributed LU (MUMPS on all ranks)\0";
 
 impl DistributedLu {
     /// The shell's state on communicator `comm`.
-    /// `time_stepping`: for a dynamic stage ([`LaggedLu::new`]).
+    /// `time_stepping`: for a dynamic stage (the module docs).
     pub fn new(
         comm: mpi::ffi::MPI_Comm,
         reuse: bool,

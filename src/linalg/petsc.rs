@@ -781,7 +781,8 @@ impl Snes {
     }
 
     /// Sets the direct solvers up for the Jacobians of a dynamic stage (`true`) or of a static
-    /// one from the next [`Snes::reset`] on ([`super::lagged_lu::LaggedLu::new`]).
+    /// one from the next [`Snes::reset`] on (refactoring threshold and tolerance of
+    /// [`super::lagged_lu`]).
     pub fn set_time_stepping(&mut self, on: bool) {
         self.time_stepping = on;
     }
