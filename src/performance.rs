@@ -537,6 +537,61 @@
 //! The residual deformation is the seed's headline; on this mesh the time integration settings
 //! move it by a few per cent, a tenth of what the mesh moves the static slab stresses ("The
 //! mesh" above).
+//!
+//! ## The seed quake (medium mesh)
+//!
+//! `mpirun -n 2 cfrd run inputs/scenes/seed_medium_gp_interface_quake.yaml` (9,414 elements,
+//! 35,151 DOFs; canonical LU on MUMPS; the 20 s record at Δt = 0.01 s as on the coarse mesh).
+//! Its construction and impoundment ran at commit 200fc26; the quake was restarted from the
+//! post-impoundment checkpoint with the build of b16fc90, `--checkpoint-every 200
+//! -canonical_refactor_after 30 -canonical_ksp_rtol 1e-6` (the dynamic-stage settings that
+//! are the default from commit b351936, see "Lagged factors in a dynamic stage" above), alone
+//! on the machine except where it was stopped (`kill -STOP`) while the test suite and two
+//! coarse benchmark runs used the cores; the windows below contain no stop. Seconds and
+//! Newton iterations per time step from its progress lines:
+//!
+//! | quake time | s per step | Newton per step |
+//! |---|---|---|
+//! | 0–0.5 s | 1.02 | 1.14 |
+//! | 0.5–1.0 s | 2.28 | 2.02 |
+//! | 1.0–1.5 s | 2.58 | 2.16 |
+//! | 1.5–2.0 s | 2.96 | 2.36 |
+//! | 2.23–3.0 s | 3.52 | 2.74 |
+//! | 3.0–3.5 s | 4.14 | 3.02 |
+//! | 3.5–3.85 s | 4.34 | 3.51 |
+//!
+//! About 1.2 s per Newton iteration, twenty times the coarse mesh's 0.06 s for ten times the
+//! DOFs. At 4 s per step the 2,000 steps take over two hours, not the issue's hour: the quake
+//! did not finish in this session and continues from its step checkpoint. Peak memory per
+//! rank was not yet read (the run has not ended).
+//!
+//! **Where the time goes** (`perf record -g` on rank 0 for 40 s at t ≈ 3.7 s): about 45 % in
+//! OpenBLAS kernels called by MUMPS (`dgemm_small_kernel_tn`, the packing copies of `dgemm`
+//! and `dtrsm`), which with reused factors are the forward and backward substitutions of the
+//! GMRES iterations (one right-hand side at a time through level-3 kernels); about a fifth in
+//! the GP rockfill's integration (`gp_integrator`, `pow`); 2.6 % in the hexahedra's stiffness.
+//! The factorization itself is rare with the dynamic settings.
+//!
+//! **Solver settings tried** (the first 85 s of the quake after the restart from the same
+//! checkpoint, build of 200fc26, `-canonical_ksp_converged_reason` added; quake time reached,
+//! Newton iterations, mean GMRES iterations per solve):
+//!
+//! | options (prefix `-canonical_`) | quake time at 85 s | Newton iterations | GMRES per solve |
+//! |---|---|---|---|
+//! | defaults (refactor after 8, rtol 1e-9) | 0.54 s | 65 | 10.4 (every other solve 18–27, the rest direct) |
+//! | `refactor_after 30` | 0.60 s | 77 | 17.8 |
+//! | `ksp_rtol 1e-6` | 0.53 s | 63 | 7.6 |
+//! | `refactor_after 30 ksp_rtol 1e-6` | 0.68 s | 93 | 13.6 |
+//! | the same with METIS ordering (`mat_mumps_icntl_7 5`) | 0.69 s | 95 | 13.7 |
+//! | the same with block low-rank factors (`mat_mumps_icntl_35 1 mat_mumps_cntl_7 1e-6`) | 0.68 s | 93 | 13.7 |
+//! | `refactor_after 30 ksp_rtol 1e-6` with PETSc's own LU, nested dissection | 0.60 s (its first factorization 16 s) | 77 | 14.1 |
+//!
+//! The fourth row is the setting taken. Later in the quake (t = 1.56 s, the same Newton
+//! iterations in both) it had taken 309 s against 406 s with the defaults. The rest of the
+//! gap to an hour is in the substitutions: a preconditioner whose application costs less than
+//! a solve with the whole factors, or fewer GMRES iterations per Newton iteration, is what
+//! the medium quake needs next.
+//!
 #![cfg_attr(doc, doc = embed_doc_image::embed_image!("accuracy", "scripts/figures/accuracy_cost.png"))]
 #![cfg_attr(doc, doc = embed_doc_image::embed_image!("mesh", "scripts/figures/mesh/accuracy_cost.png"))]
 #![cfg_attr(doc, doc = embed_doc_image::embed_image!("quake", "scripts/figures/quake/accuracy_cost.png"))]

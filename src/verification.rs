@@ -600,6 +600,11 @@
 //!   in tension** at t = 13.1 s with the GP interface (at most +0.65 MPa with the ideal
 //!   elasto-plastic one), above the tensile strength of C25 concrete (about 1.8 MPa): the
 //!   linear-elastic slab of the seed cannot crack, so the transient is reported, not followed.
+//!   These histories were read every 10 steps. Recorded at every step (commit b16fc90, whose
+//!   GP run is bitwise that of 902414d; `quake_probes`), the GP run's F-A peaks at +2.13 MPa
+//!   along the slope (t = 13.08 s) and −12.24 MPa along the axis (12.19 s), and I-B / I-C
+//!   keep σ_n within 66.0–68.2 / 85.2–94.4 kPa, closed at every step: the sampling hid
+//!   nothing that changes these findings.
 //!
 //! ![residual slab stresses, coarse seed dam, both interface models][quakeif]
 //!
