@@ -559,11 +559,13 @@
 //! | 2.23–3.0 s | 3.52 | 2.74 |
 //! | 3.0–3.5 s | 4.14 | 3.02 |
 //! | 3.5–3.85 s | 4.34 | 3.51 |
+//! | 0–7.04 s (the run so far, net of the stops; about a minute of compiling shared it) | 3.51 | 2.80 |
 //!
 //! About 1.2 s per Newton iteration, twenty times the coarse mesh's 0.06 s for ten times the
-//! DOFs. At 4 s per step the 2,000 steps take over two hours, not the hour: the quake
-//! did not finish in this session and continues from its step checkpoint. Peak memory per
-//! rank was not yet read (the run has not ended).
+//! DOFs. At 3.5–5 s per step the 2,000 steps take over two hours, not the hour: the
+//! run was stopped after its step checkpoint at t = 7.03 s, from which it continues
+//! (`--restart <out>/checkpoint.h5 --checkpoint-every 200`). Peak resident memory per rank
+//! until then: 651 / 646 MiB (`VmHWM` of the two ranks).
 //!
 //! **Where the time goes** (`perf record -g` on rank 0 for 40 s at t ≈ 3.7 s): about 45 % in
 //! OpenBLAS kernels called by MUMPS (`dgemm_small_kernel_tn`, the packing copies of `dgemm`
@@ -586,7 +588,9 @@
 //! | the same with block low-rank factors (`mat_mumps_icntl_35 1 mat_mumps_cntl_7 1e-6`) | 0.68 s | 93 | 13.7 |
 //! | `refactor_after 30 ksp_rtol 1e-6` with PETSc's own LU, nested dissection | 0.60 s (its first factorization 16 s) | 77 | 14.1 |
 //!
-//! The fourth row is the setting taken. Later in the quake (t = 1.56 s, the same Newton
+//! The fourth row is the setting taken. With it as the default (build of b351936, no
+//! options), the quake reached 0.78 s after 94 s with MUMPS, 0.64 s with UMFPACK and 0.56 s
+//! with SuperLU (`-canonical_pc_factor_mat_solver_type umfpack|superlu`), so MUMPS stays. Later in the quake (t = 1.56 s, the same Newton
 //! iterations in both) it had taken 309 s against 406 s with the defaults. The rest of the
 //! gap to an hour is in the substitutions: a preconditioner whose application costs less than
 //! a solve with the whole factors, or fewer GMRES iterations per Newton iteration, is what
