@@ -281,6 +281,15 @@
 //!   prefix `distributed_` (`-distributed_mat_mumps_icntl_14 50` for more working memory,
 //!   `-distributed_refactor_after 4`).
 //!
+//! In a dynamic stage both direct solvers change their inner solver: the Jacobian of a time
+//! step is dominated by the mass term, and an incomplete LU of the current Jacobian (ILU(0),
+//! block Jacobi with ILU(0) blocks for the distributed solver) preconditions GMRES to 1e-6
+//! for less than the substitutions of complete factors (twice as fast over the first 0.88 s
+//! of the medium seed quake, [`crate::performance`]). The canonical solver stays rank-count independent. Their
+//! options there take the prefixes `canonical_dynamic_` and `distributed_dynamic_`:
+//! `-canonical_dynamic_pc_type lu -canonical_dynamic_pc_factor_mat_solver_type mumps` brings
+//! back lagged complete factors ([`crate::linalg::lagged_lu`]).
+//!
 //! PETSc options go into `solver.petsc_options`, or follow the command: every single-dash word
 //! with more than one letter is a PETSc option, taking the next word as its value unless that
 //! is an option or a YAML file (a negative number is a value), and options on the command line
@@ -356,9 +365,9 @@
 //! choice without changing the scene, whose hash a restart checks, so a run in parts may switch
 //! to step checkpoints for its long stages. `--checkpoint-every N` writes the step checkpoints
 //! after every N-th converged load step of the run only (counted over the run, so a restart
-//! with the same N writes them at the same steps): a long quake keeps its factors between
-//! them (each step checkpoint starts a fresh factorization) and writes a few checkpoints
-//! instead of thousands, e.g. `--checkpoint-every 200` for the 2,000 steps of the seed quake.
+//! with the same N writes them at the same steps): a long quake writes a few checkpoints
+//! instead of thousands (each holds the whole state, and in a static stage each starts a fresh
+//! factorization), e.g. `--checkpoint-every 200` for the 2,000 steps of the seed quake.
 //!
 //! ```sh
 //! mpirun -n 2 cfrd run dam.yaml -o out/a                                   # killed, or stopped

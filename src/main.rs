@@ -67,8 +67,9 @@ enum Command {
         /// Step checkpoints after every N-th converged load step of the run only (and at the
         /// end of every stage), counted over the whole run, so a restarted run writes them
         /// at the same steps as an uninterrupted one with the same N; implies `--checkpoint
-        /// step`. Each step checkpoint starts a fresh factorization, which a long quake
-        /// (thousands of steps, factors reused across them) need not pay at every step.
+        /// step`. Each step checkpoint costs a write of the whole state and, where factors are
+        /// reused across steps (static stages), a fresh factorization, which a long run of
+        /// thousands of steps need not pay at every step.
         #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
         checkpoint_every: Option<u32>,
         /// Print every Newton iteration's relative residual and the reason of every cut-back,

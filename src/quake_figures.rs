@@ -104,7 +104,7 @@ pub fn read_quake_fields(scene: &Scene, h5s: &[PathBuf]) -> Result<Option<QuakeF
     };
     let stage = &scene.stages[k];
     let dynamic = stage.dynamic.as_ref().expect("a dynamic stage");
-    let dt = dynamic.duration / dynamic.steps.max(1) as f64;
+    let dt = dynamic.dt();
     let mut before = None;
     let mut q = QuakeFields {
         stage: stage.name.clone(),

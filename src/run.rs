@@ -560,7 +560,12 @@ fn write_quake(
     if scene.stages.iter().all(|s| s.dynamic.is_none()) {
         return Ok(());
     }
-    let written = if world.rank() == 0 {
+    let written = if world.rank() != 0 {
+        Ok(Vec::new())
+    } else if lacks_steps(h5) {
+        // a run whose first stage failed wrote no step to draw from
+        Ok(Vec::new())
+    } else {
         let spec = scene.file.output.profiles.clone().unwrap_or_default();
         crate::quake::write_quake_outputs(scene, h5, &report.crest, out_dir).and_then(|mut files| {
             let parts = [h5.to_path_buf()];
@@ -573,8 +578,6 @@ fn write_quake(
             )?);
             Ok(files)
         })
-    } else {
-        Ok(Vec::new())
     };
     any_error(world, written).map(|_| ()).map_err(|m| RunFailure {
         code: if failure.is_some() { EXIT_SOLVER } else { EXIT_IO },
@@ -582,6 +585,14 @@ fn write_quake(
             Some(f) => format!("{f}; writing the earthquake outputs: {m}"),
             None => format!("writing the earthquake outputs: {m}"),
         },
+    })
+}
+
+/// Whether the results file `h5` opens and holds no step (a run whose first stage failed); a
+/// file that does not open is left to the writers, which name the error.
+fn lacks_steps(h5: &Path) -> bool {
+    crate::io::compare::open(h5).is_ok_and(|f| {
+        !f.link_exists("steps") || crate::io::compare::step_names(&f, h5).is_ok_and(|n| n.is_empty())
     })
 }
 
@@ -602,7 +613,7 @@ impl QuakeRecorder {
             .stages
             .iter()
             .find_map(|s| s.dynamic.as_ref())
-            .map_or(0.0, |d| d.duration / d.steps.max(1) as f64);
+            .map_or(0.0, |d| d.dt());
         QuakeRecorder {
             crest: crate::quake::crest_node(scene),
             probes: crate::quake_probes::probe_elements(&scene.mesh, &spec),

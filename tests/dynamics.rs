@@ -546,3 +546,37 @@ fn a_plastic_dam_quake_killed_twice_restarts_bitwise() {
     check_crest_history(&crest("rest"), 0.6, 5);
     check_probe_histories(&d.join("rest"), &d.join("full"), 0.6);
 }
+
+/// A quake whose linear solves cannot converge (GMRES held to one iteration by a PETSc option)
+/// is cut back and then ends with exit code 3, naming the stage, the step and PETSc's reason:
+/// in the run that reached it and in a restart from that run's post-impoundment checkpoint,
+/// whose results hold no step to draw the quake's figures from (it once reported a missing
+/// HDF5 group instead).
+#[test]
+fn a_quake_whose_linear_solves_fail_is_cut_back_and_reported_with_petscs_reason() {
+    let _turn = mpi_turn();
+    let dir = tempdir();
+    let d = dir.path();
+    gp_interface_dam_quake(d, 0.1, "", 5);
+    let limit = ["-canonical_dynamic_ksp_max_it", "1"];
+    let first = cfrd_mpi(
+        2,
+        d,
+        &[&["run", "dam.yaml", "-o", "a", "-q"][..], &limit].concat(),
+    );
+    let restart = ["run", "dam.yaml", "-o", "b", "-q", "--restart", "a/checkpoint.h5"];
+    let second = cfrd_mpi(2, d, &[&restart[..], &limit].concat());
+    for o in [first, second] {
+        let message = text(&o);
+        assert_eq!(o.status.code(), Some(3), "{message}");
+        for part in [
+            "stage 'earthquake'",
+            "cut-back",
+            "linear solver diverged",
+            "PETSc reason",
+        ] {
+            assert!(message.contains(part), "no '{part}' in: {message}");
+        }
+        assert!(!message.contains("writing the earthquake outputs"), "{message}");
+    }
+}

@@ -1,16 +1,28 @@
-//! LU factors kept across Jacobians: the inner solver of both direct solvers
+//! Factors kept across Jacobians: the inner solver of both direct solvers
 //! ([`super::petsc::CanonicalLu`] on every rank's gathered block, [`DistributedLu`] on the
 //! distributed matrix), and the distributed LU's preconditioner shell.
 //!
-//! Within a stage the Jacobian changes little from one Newton iteration or load step to the
-//! next. With reuse the factors of an earlier Jacobian are kept as the preconditioner of
-//! right-preconditioned GMRES on the current matrix (relative tolerance 1e-9 on the true
-//! residual); the matrix is factored again at the next Jacobian once a solve needed more than 8
-//! GMRES iterations, and at once when GMRES does not converge in 30 (the solve is then repeated
-//! with the new factors), so a changed tangent (an interface opening, rockfill yielding) costs a
-//! factorization, not a failed step. In a dynamic stage the two numbers are 30 iterations and
-//! 1e-6. `-<prefix>refactor_after N`, `-<prefix>ksp_max_it N` and
-//! `-<prefix>ksp_rtol R` change the three numbers.
+//! **Static stages: lagged LU.** Within a stage the Jacobian changes little from one Newton
+//! iteration or load step to the next. With reuse the factors of an earlier Jacobian are kept as
+//! the preconditioner of right-preconditioned GMRES on the current matrix (relative tolerance
+//! 1e-9 on the true residual); the matrix is factored again at the next Jacobian once a solve
+//! needed more than 8 GMRES iterations, and at once when GMRES does not converge in 30 (the
+//! solve is then repeated with the new factors), so a changed tangent (an interface opening,
+//! rockfill yielding) costs a factorization, not a failed step. `-<prefix>refactor_after N`,
+//! `-<prefix>ksp_max_it N` and `-<prefix>ksp_rtol R` change the three numbers.
+//!
+//! **Dynamic stages: incomplete LU.** The Jacobian of a time step, K_t + shift_v·C +
+//! shift_a·M (spec seismic §3.4), is dominated by the mass term, so an incomplete
+//! factorization of the current Jacobian (ILU(0); block Jacobi with ILU(0) blocks on a
+//! distributed matrix) preconditions GMRES well: it is factored afresh at every Jacobian, costs
+//! a few matrix products, and GMRES (restart [`INCOMPLETE_RESTART`], at most
+//! [`INCOMPLETE_MAX_ITERATIONS`] iterations) solves to the relative tolerance 1e-6. A solve that
+//! does not converge fails the Newton step, which is cut back (a shorter step is more strongly
+//! mass-dominated). The options of a dynamic stage take the prefix `<prefix>dynamic_`, so the
+//! static stages' choice of package (`-canonical_pc_factor_mat_solver_type mumps`) does not
+//! reach them; `-canonical_dynamic_pc_type lu` restores lagged LU factors in dynamic stages,
+//! refactored after solves of more than 30 GMRES iterations, to the same tolerance
+//! (`cfrd::performance`, "The seed quake (medium mesh)", compares the two).
 #![allow(unsafe_code)]
 
 use super::ffi as p;
@@ -42,16 +54,23 @@ const LAGGED_RTOL: f64 = 1e-9;
 /// medium seed quake these two settings took its first 1.56 s in 309 s instead of 406 s with
 /// the same Newton iterations (`cfrd::performance`, "The seed quake (medium mesh)").
 const TIME_STEPPING_REFACTOR_AFTER: i32 = 30;
-/// GMRES's relative tolerance with lagged factors in a dynamic stage: still ten times below the
-/// seed scenes' Newton tolerance.
+/// GMRES's relative tolerance in a dynamic stage (lagged or incomplete factors): still ten
+/// times below the seed scenes' Newton tolerance.
 const TIME_STEPPING_RTOL: f64 = 1e-6;
+/// GMRES's restart with incomplete factors (`-<prefix>dynamic_ksp_gmres_restart` overrides).
+pub const INCOMPLETE_RESTART: i32 = 100;
+/// GMRES's iteration limit with incomplete factors (`-<prefix>dynamic_ksp_max_it` overrides).
+pub const INCOMPLETE_MAX_ITERATIONS: i32 = 300;
 
-/// An LU solver (PETSc `KSP` + `PCLU`) whose factors may serve later matrices.
+/// A factored solver (PETSc `KSP` with `PCLU`, or `PCILU` / `PCBJACOBI` in a dynamic stage)
+/// whose complete factors may serve later matrices (the module docs).
 pub(crate) struct LaggedLu {
     pub(super) ksp: p::KSP,
     /// Keep the factors of an earlier matrix as the preconditioner of GMRES on the current
     /// one; `false`: factor every matrix.
     reuse: bool,
+    /// The factors are incomplete (a dynamic stage's default): made afresh for every matrix.
+    incomplete: bool,
     /// The factors in use are those of an earlier matrix.
     lagged: bool,
     /// Factor at the next set-up (the last solve with lagged factors was slow, or the last
@@ -67,9 +86,10 @@ pub(crate) struct LaggedLu {
 
 impl LaggedLu {
     /// A solver on communicator `comm` whose PETSc options take `prefix` (e.g. `canonical_`);
-    /// `package`, if given, is the factorization package (options may override it);
-    /// `time_stepping`: for the Jacobians of a dynamic stage (the refactoring threshold and
-    /// tolerance of the module docs become 30 iterations and 1e-6; options still override).
+    /// `package`, if given, is the package of complete factors (options may override it);
+    /// `time_stepping`: for the Jacobians of a dynamic stage, with the options prefix
+    /// `<prefix>dynamic_` and incomplete factors unless the options ask for `lu` (the module
+    /// docs).
     pub(crate) fn new(
         comm: mpi::ffi::MPI_Comm,
         prefix: &str,
@@ -77,13 +97,18 @@ impl LaggedLu {
         package: Option<&[u8]>,
         time_stepping: bool,
     ) -> Result<LaggedLu, PetscError> {
-        let (refactor_after, rtol) = match time_stepping {
-            true => (TIME_STEPPING_REFACTOR_AFTER, TIME_STEPPING_RTOL),
-            false => (REFACTOR_AFTER_ITERATIONS, LAGGED_RTOL),
+        let (refactor_after, rtol, prefix) = match time_stepping {
+            true => (
+                TIME_STEPPING_REFACTOR_AFTER,
+                TIME_STEPPING_RTOL,
+                format!("{prefix}dynamic_"),
+            ),
+            false => (REFACTOR_AFTER_ITERATIONS, LAGGED_RTOL, prefix.to_string()),
         };
         let mut lu = LaggedLu {
             ksp: null_mut(),
             reuse,
+            incomplete: false,
             lagged: false,
             refactor: false,
             factorizations: 0,
@@ -91,44 +116,63 @@ impl LaggedLu {
             refactor_after,
         };
         let c_prefix = CString::new(prefix).expect("no NUL");
+        lu.read_refactor_after(&c_prefix)?;
+        call!(KSPCreate(comm, &mut lu.ksp))?;
+        call!(KSPSetOptionsPrefix(lu.ksp, c_prefix.as_ptr()))?;
+        lu.set_krylov(rtol, time_stepping)?;
+        let mut pc: p::PC = null_mut();
+        call!(KSPGetPC(lu.ksp, &mut pc))?;
+        let kind = match (time_stepping, comm_size(comm)? > 1) {
+            (false, _) => p::PCLU.as_slice(),
+            (true, false) => p::PCILU.as_slice(),
+            (true, true) => p::PCBJACOBI.as_slice(),
+        };
+        call!(PCSetType(pc, kind.as_ptr() as *const c_char))?;
+        if let (Some(package), false) = (package, time_stepping) {
+            call!(PCFactorSetMatSolverType(pc, package.as_ptr() as *const c_char))?;
+        }
+        call!(KSPSetFromOptions(lu.ksp))?;
+        lu.incomplete = !is_complete_lu(pc)?;
+        if let (Some(package), true, false) = (package, time_stepping, lu.incomplete) {
+            call!(PCFactorSetMatSolverType(pc, package.as_ptr() as *const c_char))?;
+        }
+        Ok(lu)
+    }
+
+    /// `-<prefix>refactor_after N`, if given.
+    fn read_refactor_after(&mut self, c_prefix: &CString) -> Result<(), PetscError> {
         let (name, mut set) = (CString::new("-refactor_after").expect("no NUL"), p::PETSC_FALSE);
         call!(PetscOptionsGetInt(
             null_mut(),
             c_prefix.as_ptr(),
             name.as_ptr(),
-            &mut lu.refactor_after,
+            &mut self.refactor_after,
             &mut set
-        ))?;
-        call!(KSPCreate(comm, &mut lu.ksp))?;
-        call!(KSPSetOptionsPrefix(lu.ksp, c_prefix.as_ptr()))?;
-        if reuse {
-            call!(KSPSetType(lu.ksp, p::KSPGMRES.as_ptr() as *const c_char))?;
-            call!(KSPGMRESSetRestart(lu.ksp, LAGGED_MAX_ITERATIONS))?;
-            call!(KSPSetPCSide(lu.ksp, p::PC_RIGHT))?;
-            call!(KSPSetNormType(lu.ksp, p::KSP_NORM_UNPRECONDITIONED))?;
-            call!(KSPSetTolerances(
-                lu.ksp,
-                rtol,
-                1e-300,
-                1e30,
-                LAGGED_MAX_ITERATIONS
-            ))?;
-        } else {
-            call!(KSPSetType(lu.ksp, p::KSPPREONLY.as_ptr() as *const c_char))?;
-        }
-        let mut pc: p::PC = null_mut();
-        call!(KSPGetPC(lu.ksp, &mut pc))?;
-        call!(PCSetType(pc, p::PCLU.as_ptr() as *const c_char))?;
-        if let Some(package) = package {
-            call!(PCFactorSetMatSolverType(pc, package.as_ptr() as *const c_char))?;
-        }
-        call!(KSPSetFromOptions(lu.ksp))?;
-        Ok(lu)
+        ))
     }
 
-    /// Whether the next set-up factors the matrix (reuse off, or a refactor is due).
+    /// The Krylov method before the options: right-preconditioned GMRES on the true residual
+    /// when factors may be lagged, and in a dynamic stage (longer there, for incomplete
+    /// factors); `preonly` when every matrix of a static stage is factored.
+    fn set_krylov(&mut self, rtol: f64, time_stepping: bool) -> Result<(), PetscError> {
+        if !self.reuse && !time_stepping {
+            return call!(KSPSetType(self.ksp, p::KSPPREONLY.as_ptr() as *const c_char));
+        }
+        let (restart, max_it) = match time_stepping {
+            true => (INCOMPLETE_RESTART, INCOMPLETE_MAX_ITERATIONS),
+            false => (LAGGED_MAX_ITERATIONS, LAGGED_MAX_ITERATIONS),
+        };
+        call!(KSPSetType(self.ksp, p::KSPGMRES.as_ptr() as *const c_char))?;
+        call!(KSPGMRESSetRestart(self.ksp, restart))?;
+        call!(KSPSetPCSide(self.ksp, p::PC_RIGHT))?;
+        call!(KSPSetNormType(self.ksp, p::KSP_NORM_UNPRECONDITIONED))?;
+        call!(KSPSetTolerances(self.ksp, rtol, 1e-300, 1e30, max_it))
+    }
+
+    /// Whether the next set-up factors the matrix (reuse off, incomplete factors, or a refactor
+    /// is due).
     pub(crate) fn wants_factors(&self) -> bool {
-        !self.reuse || self.refactor
+        !self.reuse || self.incomplete || self.refactor
     }
 
     /// Sets up on the current matrix: keeps the factors of an earlier matrix when `lagged`,
@@ -180,6 +224,24 @@ impl LaggedLu {
     pub(crate) fn take_factorizations(&mut self) -> u64 {
         std::mem::take(&mut self.factorizations)
     }
+}
+
+/// The size of communicator `comm`.
+fn comm_size(comm: mpi::ffi::MPI_Comm) -> Result<i32, PetscError> {
+    let mut size = 0;
+    // SAFETY: a valid communicator and out-pointer.
+    let rc = unsafe { mpi::ffi::MPI_Comm_size(comm, &mut size) };
+    chk(rc, "MPI_Comm_size")?;
+    Ok(size)
+}
+
+/// Whether `pc` is a complete LU factorization (`PCLU`), after the options.
+fn is_complete_lu(pc: p::PC) -> Result<bool, PetscError> {
+    let mut kind: p::PCType = std::ptr::null();
+    call!(PCGetType(pc, &mut kind))?;
+    // SAFETY: PETSc returns its own NUL-terminated type name.
+    let kind = unsafe { std::ffi::CStr::from_ptr(kind) };
+    Ok(kind.to_bytes_with_nul() == p::PCLU)
 }
 
 impl Drop for LaggedLu {

@@ -134,6 +134,11 @@ impl DynamicStage {
     pub fn ground_acceleration(&self, t: f64) -> [f64; 3] {
         self.record.at(t).map(|a| self.scale * a)
     }
+
+    /// The time step (s): the duration over the steps.
+    pub fn dt(&self) -> f64 {
+        self.duration / self.steps.max(1) as f64
+    }
 }
 
 /// A validated dynamic stage.
