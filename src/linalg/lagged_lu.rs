@@ -13,8 +13,9 @@
 //!
 //! **Dynamic stages: incomplete LU.** The Jacobian of a time step, K_t + shift_v·C +
 //! shift_a·M (spec seismic §3.4), is dominated by the mass term, so an incomplete
-//! factorization of the current Jacobian (ILU(0); block Jacobi with ILU(0) blocks on a
-//! distributed matrix) preconditions GMRES well: it is factored afresh at every Jacobian, costs
+//! factorization of the current Jacobian (ILU(0); on a distributed matrix, additive Schwarz
+//! with ILU(0) on subdomains overlapping by [`SCHWARZ_OVERLAP`] layers) preconditions GMRES
+//! well: it is factored afresh at every Jacobian, costs
 //! a few matrix products, and GMRES (restart [`INCOMPLETE_RESTART`], at most
 //! [`INCOMPLETE_MAX_ITERATIONS`] iterations) solves to the relative tolerance 1e-6. A solve that
 //! does not converge fails the Newton step, which is cut back (a shorter step is more strongly
@@ -57,12 +58,18 @@ const TIME_STEPPING_REFACTOR_AFTER: i32 = 30;
 /// GMRES's relative tolerance in a dynamic stage (lagged or incomplete factors): still ten
 /// times below the seed scenes' Newton tolerance.
 const TIME_STEPPING_RTOL: f64 = 1e-6;
+/// Overlap of the subdomains of the distributed solver's additive Schwarz preconditioner in a
+/// dynamic stage (`-distributed_dynamic_pc_asm_overlap` overrides). On the small GP-interface
+/// dam of `tests/dynamics.rs` on 2 ranks, GMRES took 231 iterations per solve with block
+/// Jacobi (no overlap), 31 with overlap 1 and 18.6 with overlap 2, against 12 with ILU(0)
+/// of the whole matrix on 1 rank.
+const SCHWARZ_OVERLAP: i32 = 2;
 /// GMRES's restart with incomplete factors (`-<prefix>dynamic_ksp_gmres_restart` overrides).
 pub const INCOMPLETE_RESTART: i32 = 100;
 /// GMRES's iteration limit with incomplete factors (`-<prefix>dynamic_ksp_max_it` overrides).
 pub const INCOMPLETE_MAX_ITERATIONS: i32 = 300;
 
-/// A factored solver (PETSc `KSP` with `PCLU`, or `PCILU` / `PCBJACOBI` in a dynamic stage)
+/// A factored solver (PETSc `KSP` with `PCLU`, or `PCILU` / `PCASM` in a dynamic stage)
 /// whose complete factors may serve later matrices (the module docs).
 pub(crate) struct LaggedLu {
     pub(super) ksp: p::KSP,
@@ -125,9 +132,12 @@ impl LaggedLu {
         let kind = match (time_stepping, comm_size(comm)? > 1) {
             (false, _) => p::PCLU.as_slice(),
             (true, false) => p::PCILU.as_slice(),
-            (true, true) => p::PCBJACOBI.as_slice(),
+            (true, true) => p::PCASM.as_slice(),
         };
         call!(PCSetType(pc, kind.as_ptr() as *const c_char))?;
+        if kind == p::PCASM.as_slice() {
+            call!(PCASMSetOverlap(pc, SCHWARZ_OVERLAP))?;
+        }
         if let (Some(package), false) = (package, time_stepping) {
             call!(PCFactorSetMatSolverType(pc, package.as_ptr() as *const c_char))?;
         }
