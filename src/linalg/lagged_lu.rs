@@ -63,7 +63,7 @@ const TIME_STEPPING_RTOL: f64 = 1e-6;
 /// dam of `tests/dynamics.rs` on 2 ranks, GMRES took 231 iterations per solve with block
 /// Jacobi (no overlap), 31 with overlap 1 and 18.6 with overlap 2, against 12 with ILU(0)
 /// of the whole matrix on 1 rank.
-const SCHWARZ_OVERLAP: i32 = 2;
+pub const SCHWARZ_OVERLAP: i32 = 2;
 /// GMRES's restart with incomplete factors (`-<prefix>dynamic_ksp_gmres_restart` overrides).
 pub const INCOMPLETE_RESTART: i32 = 100;
 /// GMRES's iteration limit with incomplete factors (`-<prefix>dynamic_ksp_max_it` overrides).
