@@ -497,6 +497,26 @@
 //! displacement by 0.1 mm; the peak crest accelerations, single-step spikes, by up to 2.4 %
 //! (amplification 3.32 / 4.59 / 5.26 against 3.40 / 4.70 / 5.32).
 //!
+//! **Incomplete factors** (from commit 4924734, [`crate::linalg::lagged_lu`]): a dynamic
+//! stage now preconditions GMRES with ILU(0) of each Jacobian. The same coarse quake restarted
+//! from its post-impoundment checkpoint (written at commit 808e019), 2 ranks, build of
+//! 3db3ef1, one run after the other alone on the machine, the second with
+//! `-canonical_dynamic_pc_type lu -canonical_dynamic_ksp_max_it 30
+//! -canonical_dynamic_ksp_gmres_restart 30` (the lagged factors above):
+//!
+//! | dynamic-stage solver | quake stage | linear solves / assembly | KSP iterations | factorizations | Newton iterations | cut-backs | memory per rank |
+//! |---|---|---|---|---|---|---|---|
+//! | ILU(0) (the default) | 334.5 s | 105.6 s / 224.7 s | 83,546 | 5,293 | 5,617 | 11 | 122 / 104 MiB |
+//! | lagged LU | 679.3 s | 430.7 s / 244.1 s | 101,632 | 154 | 5,638 | 14 | 132 / 114 MiB |
+//!
+//! 2.03 times faster in the quake stage, 4.1 times in the linear solves. These two ran on a
+//! machine whose virtual CPU OpenBLAS does not recognise, so its generic kernels served the
+//! GMRES sums (`ci/env.sh`); the lagged-LU stage took twice its time of the table above (a
+//! different machine), the assembly about as long. The residual slab table (Fig. 13) of the
+//! two differs by at most 0.025 MPa (σ_s), 0.020 MPa (σ_a) and 0.02 cm, the residual crest
+//! displacement by 0.3 mm (settlement 0.1804 against 0.1801 m); the peak crest accelerations,
+//! single-step spikes, differ more (amplification along the axis 4.68 against 3.42).
+//!
 //! ### Time step, mass and integrator against cost
 //!
 //! `QUAKE=1 bash scripts/accuracy_cost.sh RUNS` (commit 6d2478f; each run alone on the
@@ -541,46 +561,62 @@
 //! ## The seed quake (medium mesh)
 //!
 //! `mpirun -n 2 cfrd run inputs/scenes/seed_medium_gp_interface_quake.yaml` (9,414 elements,
-//! 35,151 DOFs; canonical LU on MUMPS; the 20 s record at Δt = 0.01 s as on the coarse mesh).
-//! Its construction and impoundment ran at commit 200fc26; the quake was restarted from the
-//! post-impoundment checkpoint with the build of b16fc90, `--checkpoint-every 200
-//! -canonical_refactor_after 30 -canonical_ksp_rtol 1e-6` (the dynamic-stage settings that
-//! are the default from commit b351936, see "Lagged factors in a dynamic stage" above), alone
-//! on the machine except where it was stopped (`kill -STOP`) while the test suite and two
-//! coarse benchmark runs used the cores; the windows below contain no stop. Seconds and
-//! Newton iterations per time step from its progress lines:
+//! 35,151 DOFs; canonical solver; the 20 s record at Δt = 0.01 s as on the coarse mesh). Its
+//! construction and impoundment ran at commit 808e019 (about 46 min, sharing the machine with
+//! compiles); the quake was restarted from the post-impoundment checkpoint with
+//! `--checkpoint-every 200`.
+//!
+//! **Incomplete factors** (from commit 4924734, [`crate::linalg::lagged_lu`]). A time step's
+//! Jacobian is dominated by the mass term, so GMRES preconditioned by ILU(0) of the current
+//! Jacobian takes 17.7 iterations per solve (at most 24; `-canonical_dynamic_ksp_converged_reason`
+//! over the quake's first 396 solves), each a product and two sparse triangular solves, where
+//! lagged MUMPS factors took 13.6, each two substitutions with the complete factors. Side by
+//! side from the same checkpoint (build of 4924734, one run after the other, alone on the
+//! machine; the second with `-canonical_dynamic_pc_type lu
+//! -canonical_dynamic_pc_factor_mat_solver_type mumps -canonical_dynamic_ksp_max_it 30
+//! -canonical_dynamic_ksp_gmres_restart 30`, the lagged factors of commit b351936):
+//!
+//! | dynamic-stage solver | quake time t = 0.5 s reached after | t = 0.88 s reached after | Newton iterations to 0.88 s |
+//! |---|---|---|---|
+//! | ILU(0), GMRES to 1e-6 (the default) | 40 s | 97 s | 132 |
+//! | lagged MUMPS factors, refactored after 30 GMRES iterations, GMRES to 1e-6 | 70 s | 197 s | 132 |
+//!
+//! 2.0 times faster over the first 0.88 s, with the same Newton iterations. The quake then ran
+//! with the default alone on the machine, except for stops (`kill -STOP`) while compiles and
+//! the test suite used the cores; seconds per step net of the stops, from its progress lines:
 //!
 //! | quake time | s per step | Newton per step |
 //! |---|---|---|
-//! | 0–0.5 s | 1.02 | 1.14 |
-//! | 0.5–1.0 s | 2.28 | 2.02 |
-//! | 1.0–1.5 s | 2.58 | 2.16 |
-//! | 1.5–2.0 s | 2.96 | 2.36 |
-//! | 2.23–3.0 s | 3.52 | 2.74 |
-//! | 3.0–3.5 s | 4.14 | 3.02 |
-//! | 3.5–3.85 s | 4.34 | 3.51 |
-//! | 0–7.04 s (the run so far, net of the stops; about a minute of compiling shared it) | 3.51 | 2.80 |
+//! | 0–0.5 s | 0.78 | 1.14 |
+//! | 0.5–1.0 s | 1.60 | 2.02 |
+//! | 1.0–1.5 s | 1.94 | 2.16 |
+//! | 1.5–2.0 s | 2.24 | 2.34 |
+//! | 2.0–2.5 s | 2.36 | 2.58 |
+//! | 2.5–3.0 s | 2.37 | 2.60 |
+//! | 3.03–3.37 s (restarted from the step checkpoint at 3.02 s) | 2.82 | 2.97 |
 //!
-//! About 1.2 s per Newton iteration, twenty times the coarse mesh's 0.06 s for ten times the
-//! DOFs. At 3.5–5 s per step the 2,000 steps take over two hours, not the hour: the
-//! run was stopped after its step checkpoint at t = 7.03 s, from which it continues
-//! (`--restart <out>/checkpoint.h5 --checkpoint-every 200`). Peak resident memory per rank
-//! until then: 651 / 646 MiB (`VmHWM` of the two ranks).
+//! About 0.9 s per Newton iteration. The cost per step grows with the shaking, as the Newton
+//! iterations do: at 2.4–2.8 s per step the 2,000 steps take well over an hour. The run was
+//! stopped at t = 3.3 s: the rest would not have ended within this session, and the files of a
+//! session's machine do not outlive it. The ideal elasto-plastic medium quake was not started.
 //!
-//! **Where the time goes** (`perf record -g` on rank 0 for 40 s at t ≈ 3.7 s): about 45 % in
-//! OpenBLAS kernels called by MUMPS (`dgemm_small_kernel_tn`, the packing copies of `dgemm`
-//! and `dtrsm`), which with reused factors are the forward and backward substitutions of the
-//! GMRES iterations (one right-hand side at a time through level-3 kernels); about a fifth in
-//! the GP rockfill's integration (`gp_integrator`, `pow`); 2.6 % in the hexahedra's stiffness.
-//! The factorization itself is rare with the dynamic settings.
+//! **Where the time goes** with ILU (`perf record` on rank 0 for 30 s at t ≈ 1 s): 42 % in
+//! PETSc (the gather of the Jacobian onto every rank, its ILU, the GMRES products and
+//! triangular solves, all repeated on every rank by the canonical solver), 39 % in cfrd (the GP
+//! rockfill's integration, `pow` 5 %, the hexahedra's stiffness 4.7 %), 5 % in `memmove`.
+//! With lagged MUMPS factors (at t ≈ 3.7 s, the earlier run) about 45 % had been in the
+//! OpenBLAS kernels of the substitutions. The Newton line search (`l2`, two or three residual
+//! evaluations per iteration) is not the lever: with `-snes_linesearch_type basic` from the
+//! 3.02 s checkpoint the quake reached 3.42 s in 95 s (121 Newton iterations, one cut-back)
+//! against 3.37 s in 96 s (101 iterations) with `l2`.
 //!
-//! **Solver settings tried** (the first 85 s of the quake after the restart from the same
-//! checkpoint, build of 200fc26, `-canonical_ksp_converged_reason` added; quake time reached,
-//! Newton iterations, mean GMRES iterations per solve):
+//! **Lagged complete factors, tried before** (the first 85 s of the quake after the restart,
+//! build of 200fc26, `-canonical_ksp_converged_reason`; quake time reached, Newton iterations,
+//! mean GMRES iterations per solve):
 //!
 //! | options (prefix `-canonical_`) | quake time at 85 s | Newton iterations | GMRES per solve |
 //! |---|---|---|---|
-//! | defaults (refactor after 8, rtol 1e-9) | 0.54 s | 65 | 10.4 (every other solve 18–27, the rest direct) |
+//! | static defaults (refactor after 8, rtol 1e-9) | 0.54 s | 65 | 10.4 (every other solve 18–27, the rest direct) |
 //! | `refactor_after 30` | 0.60 s | 77 | 17.8 |
 //! | `ksp_rtol 1e-6` | 0.53 s | 63 | 7.6 |
 //! | `refactor_after 30 ksp_rtol 1e-6` | 0.68 s | 93 | 13.6 |
@@ -588,13 +624,15 @@
 //! | the same with block low-rank factors (`mat_mumps_icntl_35 1 mat_mumps_cntl_7 1e-6`) | 0.68 s | 93 | 13.7 |
 //! | `refactor_after 30 ksp_rtol 1e-6` with PETSc's own LU, nested dissection | 0.60 s (its first factorization 16 s) | 77 | 14.1 |
 //!
-//! The fourth row is the setting taken. With it as the default (build of b351936, no
-//! options), the quake reached 0.78 s after 94 s with MUMPS, 0.64 s with UMFPACK and 0.56 s
-//! with SuperLU (`-canonical_pc_factor_mat_solver_type umfpack|superlu`), so MUMPS stays. Later in the quake (t = 1.56 s, the same Newton
-//! iterations in both) it had taken 309 s against 406 s with the defaults. The rest of the
-//! gap to an hour is in the substitutions: a preconditioner whose application costs less than
-//! a solve with the whole factors, or fewer GMRES iterations per Newton iteration, is what
-//! the medium quake needs next.
+//! The fourth row became the lagged factors' dynamic setting (commit b351936); with it MUMPS
+//! reached 0.78 s after 94 s, UMFPACK 0.64 s and SuperLU 0.56 s. That run reached t = 7.03 s
+//! at 3.51 s per step (2.80 Newton iterations per step, 651 / 646 MiB per rank).
+//!
+//! What remains between this and an hour: the canonical solver repeats the gather, the ILU and
+//! GMRES on every rank, so half of the time does not shrink with ranks; the distributed
+//! solver's additive Schwarz (`linear_solver: distributed_lu`) splits it, at more GMRES
+//! iterations (18.6 against 12 per solve on the small dam of `tests/dynamics.rs`), and was not
+//! run on this mesh.
 //!
 #![cfg_attr(doc, doc = embed_doc_image::embed_image!("accuracy", "scripts/figures/accuracy_cost.png"))]
 #![cfg_attr(doc, doc = embed_doc_image::embed_image!("mesh", "scripts/figures/mesh/accuracy_cost.png"))]

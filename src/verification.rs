@@ -499,7 +499,10 @@
 //! "ideal elasto-plastic=mc" -o seed_quake_interfaces.png` draws the figure below. The figures
 //! are `scripts/figures/seed_quake_gp_interface_*.png` and `seed_quake_mohr_coulomb_*.png`; the
 //! probe histories are sampled every 10 steps (`output_every: 10`), the crest's history at
-//! every step (from commit a0533fd). The results below are those of commit 902414d (the slab
+//! every step (from commit a0533fd). Since commit 4924734 a dynamic stage preconditions GMRES
+//! with ILU(0) instead of lagged LU factors; that moves the residual slab table below by at most
+//! 0.025 MPa and 0.02 cm ([`crate::performance`], "Incomplete factors"). The results below are
+//! those of commit 902414d (the slab
 //! with incompatible modes); the wall times in the table are those of commit 7b67265 (the
 //! trilinear slab; each run alone on the machine: the reruns of 902414d shared it). The GP run
 //! of commit a0533fd, alone on the machine and bitwise equal in its results to that of
