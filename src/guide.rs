@@ -284,10 +284,10 @@
 //! In a dynamic stage both direct solvers change their inner solver: the Jacobian of a time
 //! step is dominated by the mass term, and an incomplete LU of the current Jacobian (ILU(0),
 //! additive Schwarz with ILU(0) on overlapping subdomains for the distributed solver)
-//! preconditions GMRES to 1e-6
-//! for less than the substitutions of complete factors (twice as fast over the first 0.88 s
-//! of the medium seed quake, [`crate::performance`]). The canonical solver stays rank-count independent. Their
-//! options there take the prefixes `canonical_dynamic_` and `distributed_dynamic_`:
+//! preconditions GMRES to 1e-6 for less than the substitutions of complete factors (twice as
+//! fast on the coarse seed quake and over the first 0.88 s of the medium one,
+//! [`crate::performance`]). The canonical solver stays rank-count independent. Their options
+//! there take the prefixes `canonical_dynamic_` and `distributed_dynamic_`:
 //! `-canonical_dynamic_pc_type lu -canonical_dynamic_pc_factor_mat_solver_type mumps` brings
 //! back lagged complete factors ([`crate::linalg::lagged_lu`]).
 //!
