@@ -560,10 +560,8 @@ fn write_quake(
     if scene.stages.iter().all(|s| s.dynamic.is_none()) {
         return Ok(());
     }
-    let written = if world.rank() != 0 {
-        Ok(Vec::new())
-    } else if lacks_steps(h5) {
-        // a run whose first stage failed wrote no step to draw from
+    // a run whose first stage failed wrote no step to draw from
+    let written = if world.rank() != 0 || lacks_steps(h5) {
         Ok(Vec::new())
     } else {
         let spec = scene.file.output.profiles.clone().unwrap_or_default();
