@@ -15,9 +15,12 @@
 //!       mass: consistent                    # or lumped
 //!       # hht_alpha: -0.05                  # HHT-α instead of Newmark's β, γ (α ∈ [−1/3, 0])
 //!       output_every: 10                    # fields every 10 steps (0: at the end only)
+//!       # predictor: extrapolate            # start each step's Newton iterations from
+//!       #                                   # u₀ + Δt·v₀ (default none: from u₀)
 //! ```
 
 use super::error::SceneError;
+use super::schema::Predictor;
 use crate::seismic::Accelerogram;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
@@ -58,6 +61,13 @@ pub struct DynamicSpec {
     /// Write the fields every this many steps besides the stage's end (0: the end only).
     #[serde(default)]
     pub output_every: u32,
+    /// Initial guess of a time step's Newton iterations: `none` (the default) starts from the
+    /// converged displacement, `extrapolate` carries the committed velocity over the step
+    /// (`solver::integrator::Newmark::extrapolating`): fewer Newton iterations and cut-backs,
+    /// but on the seed quake more time ([`crate::performance`], "The seed quake (coarse
+    /// mesh)").
+    #[serde(default)]
+    pub predictor: Predictor,
 }
 
 fn one() -> f64 {
@@ -162,6 +172,8 @@ pub struct DynamicStage {
     pub damping: Option<Damping>,
     /// Output every this many steps (0: the end only).
     pub output_every: u32,
+    /// The initial guess of a time step.
+    pub predictor: Predictor,
 }
 
 /// Largest number of time steps of one dynamic stage.
@@ -214,6 +226,7 @@ pub fn resolve(
         lumped: spec.mass == MassKind::Lumped,
         damping,
         output_every: spec.output_every,
+        predictor: spec.predictor,
     })
 }
 

@@ -315,19 +315,22 @@ pub struct SolverSpec {
     /// Initial guess of a static load step's Newton iterations: `extrapolate` carries the
     /// last converged step's displacement rate du/dλ over the new step (from the second step
     /// of a stage on; `solver::integrator::QuasiStatic`), `none` starts from the converged
-    /// state. Default `none`. Dynamic stages start from the converged state either way.
+    /// state. Default `none`. A dynamic stage has its own (`dynamic.predictor`,
+    /// [`crate::scene::dynamic::DynamicSpec`]).
     #[serde(default)]
     pub predictor: Predictor,
 }
 
-/// The initial guess of a static load step ([`SolverSpec::predictor`]).
+/// The initial guess of a static load step ([`SolverSpec::predictor`]) or of a time step
+/// ([`crate::scene::dynamic::DynamicSpec::predictor`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Predictor {
     /// The converged state of the step's start.
     #[default]
     None,
-    /// The converged state plus the last step's rate du/dλ times the new step.
+    /// Statics: the converged state plus the last step's rate du/dλ times the new step.
+    /// Dynamics: the committed velocity carried over the step.
     Extrapolate,
 }
 

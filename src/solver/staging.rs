@@ -72,7 +72,10 @@ impl Problem<'_> {
         let order = self.model.disc.canonical_dofs();
         let u = &self.model.u_committed;
         let newmark = Newmark::new(params, damping, (mass, k0), ground, u, &order)?;
-        Ok(Box::new(newmark))
+        Ok(match d.predictor {
+            Predictor::Extrapolate => Box::new(newmark.extrapolating()),
+            Predictor::None => Box::new(newmark),
+        })
     }
 
     /// The two frequencies (Hz) of Rayleigh damping: given, or those of two modes of the
