@@ -337,6 +337,7 @@
 //! | `cfrd run ... --checkpoint stage\|step\|none` | overrides `output.checkpoint` without changing the scene (nor its hash) |
 //! | `cfrd run ... --monitor` | prints every Newton residual and cut-back, as `solver.monitor` does, without changing the scene |
 //! | `cfrd run ... --integration-tol-ratio R` | caps the GP substepping tolerance at R·newton_tol, as `solver.integration_tol_ratio` does, without changing the scene |
+//! | `cfrd run ... --linear-solver iterative\|canonical_lu\|distributed_lu` | solves with this linear solver instead of `solver.linear_solver`, without changing the scene: a long run continues from its checkpoint on another solver (its results then agree with the scene's to the solvers' tolerances, not bit for bit) |
 //! | `cfrd run ... -q` | prints nothing but errors |
 //! | `cfrd run ... --overwrite` | writes into a directory that holds another run's `results.h5`, `checkpoint.h5` or `summary.json` (its old checkpoint is removed first); without it such a directory is refused (exit code 2) unless the run restarts from that directory's own checkpoint. Temporary files of killed runs found there (`.results.h5.partial-<pid>` and the like) are named and removed |
 //! | `cfrd check SCENE` | parses, validates and cross-checks the scene and its mesh without solving; prints the counts of nodes, elements, blocks, fixed DOFs and stages |

@@ -84,6 +84,12 @@ enum Command {
         /// the integration noise can be continued from its checkpoint with, e.g., R = 0.1.
         #[arg(long, value_name = "R")]
         integration_tol_ratio: Option<f64>,
+        /// Solve the Newton corrections with this linear solver instead of the scene's
+        /// `solver.linear_solver`; the scene (and its hash) stays unchanged, so a long run can
+        /// continue from its checkpoint on another solver (the results then agree with the
+        /// scene's to the solvers' tolerances, not bit for bit).
+        #[arg(long, value_name = "iterative|canonical_lu|distributed_lu", value_parser = parse_linear_solver)]
+        linear_solver: Option<cfrd::scene::schema::LinearSolver>,
         /// Write into an output directory that holds another run's `results.h5`,
         /// `checkpoint.h5` or `summary.json` (its old checkpoint is removed first); without it
         /// such a directory is refused unless the run restarts from its checkpoint.
@@ -245,6 +251,19 @@ fn parse_stop_after(s: &str) -> Result<cfrd::run::StopAfter, String> {
     } else {
         cfrd::run::StopAfter::Stage(n)
     })
+}
+
+/// Parses `--linear-solver`: iterative, canonical_lu or distributed_lu.
+fn parse_linear_solver(s: &str) -> Result<cfrd::scene::schema::LinearSolver, String> {
+    use cfrd::scene::schema::LinearSolver;
+    match s {
+        "iterative" => Ok(LinearSolver::Iterative),
+        "canonical_lu" => Ok(LinearSolver::CanonicalLu),
+        "distributed_lu" => Ok(LinearSolver::DistributedLu),
+        _ => Err(format!(
+            "'{s}': expected iterative, canonical_lu or distributed_lu"
+        )),
+    }
 }
 
 /// Parses `--checkpoint`.
@@ -460,6 +479,7 @@ fn main() -> ExitCode {
                 checkpoint_every: None,
                 monitor: false,
                 integration_tol_ratio: None,
+                linear_solver: None,
             };
             let s = cfrd::run::bench_solver(world, dofs, &opts)?;
             if mpi::topology::Communicator::rank(world) == 0 {
@@ -503,6 +523,7 @@ fn main() -> ExitCode {
             checkpoint_every,
             monitor,
             integration_tol_ratio,
+            linear_solver,
             overwrite,
         } => with_mpi(|world| {
             if checkpoint_every.is_some()
@@ -527,6 +548,7 @@ fn main() -> ExitCode {
                 checkpoint_every,
                 monitor,
                 integration_tol_ratio,
+                linear_solver,
             };
             cfrd::run::run(world, &opts)?;
             Ok(())

@@ -69,6 +69,10 @@ pub struct RunOptions {
     /// [`crate::scene::schema::SolverSpec::integration_tol_ratio`]), without changing the scene
     /// (its hash), so a run stalled at the integration noise continues from its checkpoint.
     pub integration_tol_ratio: Option<f64>,
+    /// The linear solver instead of the scene's `solver.linear_solver` (`--linear-solver`),
+    /// without changing the scene (its hash), so a run continues from its checkpoint on
+    /// another solver.
+    pub linear_solver: Option<crate::scene::schema::LinearSolver>,
 }
 
 /// Where a run in parts ends (`--stop-after-stage K` or `+N`).
@@ -147,6 +151,9 @@ pub fn run(world: &SimpleCommunicator, opts: &RunOptions) -> Result<RunSummary, 
     timer.start(Phase::Read);
     let mut scene = load_scene(world, opts.scene.as_deref())?;
     scene.file.solver.monitor |= opts.monitor;
+    if let Some(solver) = opts.linear_solver {
+        scene.file.solver.linear_solver = solver;
+    }
     if let Some(ratio) = opts.integration_tol_ratio {
         // the same check on every rank: an invalid ratio fails on all alike
         scene

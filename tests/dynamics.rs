@@ -685,3 +685,75 @@ fn the_extrapolating_time_step_predictor_saves_newton_iterations_for_the_same_qu
     assert_eq!(statics, 0.0, "{table}");
     assert!(quake > 0.0 && quake < 1.0e-5, "{table}");
 }
+
+/// `--linear-solver` continues a run from its checkpoint on another solver, the scene (whose
+/// hash the restart checks) unchanged: the small GP-interface dam stopped after its
+/// impoundment on the canonical solver, then its quake on 2 ranks with the distributed one
+/// (additive Schwarz in the quake) and, for reference, with the scene's own. The two
+/// continuations take different linear iterations and agree in the quake's displacement to
+/// within the Newton tolerance; an unknown solver is refused with exit code 2.
+#[test]
+fn a_run_continues_from_its_checkpoint_on_another_linear_solver() {
+    let _turn = mpi_turn();
+    let dir = tempdir();
+    let d = dir.path();
+    gp_interface_dam_quake(d, 0.2, "", 5);
+    let o = common::cfrd(d, &["check", "dam.yaml"]);
+    let stages = text(&o)
+        .split(" stage(s)")
+        .next()
+        .and_then(|head| head.rsplit(' ').next()?.parse::<usize>().ok())
+        .unwrap_or(0);
+    assert!(stages > 1, "the schedule's length: {}", text(&o));
+    let before_quake = (stages - 1).to_string();
+    let o = cfrd_mpi(
+        2,
+        d,
+        &[
+            "run",
+            "dam.yaml",
+            "-o",
+            "pre",
+            "-q",
+            "--stop-after-stage",
+            &before_quake,
+        ],
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    let mut ksp = Vec::new();
+    for (out, solver) in [("same", "canonical_lu"), ("switched", "distributed_lu")] {
+        let args = [
+            "run",
+            "dam.yaml",
+            "-o",
+            out,
+            "-q",
+            "--restart",
+            "pre/checkpoint.h5",
+            "--linear-solver",
+            solver,
+        ];
+        let o = cfrd_mpi(2, d, &args);
+        assert!(o.status.success(), "{out}: {}", text(&o));
+        let s: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(d.join(out).join("summary.json")).unwrap())
+                .unwrap();
+        ksp.push(s["ksp_iterations"].as_u64().expect("ksp_iterations"));
+    }
+    let o = common::cfrd(d, &["compare", "same/results.h5", "switched/results.h5"]);
+    let table = text(&o);
+    let quake = displacement_difference(&table, true);
+    println!("KSP iterations on the scene's / the distributed solver: {ksp:?}; displacement difference in the quake {quake:.2e}");
+    assert_ne!(
+        ksp[0], ksp[1],
+        "the second continuation solved with another solver"
+    );
+    assert!(quake > 0.0 && quake < 1.0e-5, "{table}");
+    let o = cfrd_mpi(
+        1,
+        d,
+        &["run", "dam.yaml", "-o", "bad", "--linear-solver", "cholesky"],
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("distributed_lu"), "{}", text(&o));
+}
