@@ -603,24 +603,62 @@
 //! | ILU(0), GMRES to 1e-6 (the default) | 40 s | 97 s | 132 |
 //! | lagged MUMPS factors, refactored after 30 GMRES iterations, GMRES to 1e-6 | 70 s | 197 s | 132 |
 //!
-//! 2.0 times faster over the first 0.88 s, with the same Newton iterations. The quake then ran
-//! with the default alone on the machine, except for stops (`kill -STOP`) while compiles and
-//! the test suite used the cores; seconds per step net of the stops, from its progress lines:
+//! 2.0 times faster over the first 0.88 s, with the same Newton iterations.
 //!
-//! | quake time | s per step | Newton per step |
-//! |---|---|---|
-//! | 0–0.5 s | 0.78 | 1.14 |
-//! | 0.5–1.0 s | 1.60 | 2.02 |
-//! | 1.0–1.5 s | 1.94 | 2.16 |
-//! | 1.5–2.0 s | 2.24 | 2.34 |
-//! | 2.0–2.5 s | 2.36 | 2.58 |
-//! | 2.5–3.0 s | 2.37 | 2.60 |
-//! | 3.03–3.37 s (restarted from the step checkpoint at 3.02 s) | 2.82 | 2.97 |
+//! **The whole quake** ran in three parts, each restarted from the step checkpoint of the one
+//! before, alone on the machine except for stops (`kill -STOP`)
+//! while compiles and tests used the cores; times are net of the stops:
 //!
-//! About 0.9 s per Newton iteration. The cost per step grows with the shaking, as the Newton
-//! iterations do: at 2.4–2.8 s per step the 2,000 steps take well over an hour. The run was
-//! stopped at t = 3.3 s: the rest would not have ended within this session, and the files of a
-//! session's machine do not outlive it. The ideal elasto-plastic medium quake was not started.
+//! | part | quake time | build, solver | wall time | Newton iterations | peak memory per rank |
+//! |---|---|---|---|---|---|
+//! | 1 | 0–3.02 s | 4924734, canonical (ILU(0) on every rank) | 571 s | 648 | – |
+//! | 2 | 3.02–4.02 s | 476de7c, canonical | 328 s | 330 | 357 MiB (largest process) |
+//! | 3 | 4.02–20 s | 8e8aa44, `--linear-solver distributed_lu` (additive Schwarz) | 4,240 s | 5,043 | 445 / 268 MiB |
+//! | quake | 0–20 s, 2,000 steps | | **5,139 s (85.7 min)**, 2.57 s per step | 6,021 (3.01 per step), no cut-back | |
+//!
+//! (Part 3: `/usr/bin/time -v mpirun -n 2 cfrd run
+//! inputs/scenes/seed_medium_gp_interface_quake.yaml --restart CKPT --checkpoint-every 100
+//! --linear-solver distributed_lu`, 4,320 s with one 80 s stop; its `summary.json` gives the
+//! memory.) Seconds and Newton iterations per step, from the progress lines:
+//!
+//! | quake time | part | s per step | Newton per step |
+//! |---|---|---|---|
+//! | 0–1 s | 1 | 1.19 | 1.59 |
+//! | 1–2 s | 1 | 2.09 | 2.25 |
+//! | 2–3 s | 1 | 2.37 | 2.59 |
+//! | 3–4 s | 2 | 3.21 | 3.24 |
+//! | 4–5 s | 3 | 3.02 | 3.39 |
+//! | 5–6 s | 3 | 2.78 | 3.25 |
+//! | 6–7 s | 3 | 2.78 | 3.25 |
+//! | 7–8 s | 3 | 2.78 | 3.56 |
+//! | 8–9 s | 3 | 2.57 | 3.21 |
+//! | 9–10 s | 3 | 3.59 | 3.90 |
+//! | 10–11 s | 3 | 3.72 | 3.90 |
+//! | 11–12 s | 3 | 3.60 | 4.03 |
+//! | 12–13 s | 3 | 3.29 | 3.83 |
+//! | 13–14 s | 3 | 2.76 | 3.24 |
+//! | 14–15 s | 3 | 2.54 | 3.18 |
+//! | 15–16 s | 3 | 2.13 | 2.82 |
+//! | 16–17 s | 3 | 2.00 | 2.66 |
+//! | 17–18 s | 3 | 1.77 | 2.17 |
+//! | 18–19 s | 3 | 1.61 | 2.08 |
+//! | 19–20 s | 3 | 1.50 | 2.02 |
+//!
+//! The cost per step follows the Newton iterations, which follow the shaking (strongest at
+//! 9–12 s). The goal of under an hour is missed by 43 %.
+//!
+//! **The distributed solver in the quake**, side by side: from part 2's step checkpoint at
+//! t = 4.02 s, 40 time steps each, one run after the other alone on the machine (build
+//! 8e8aa44):
+//!
+//! | solver in the quake | 40 steps | s per step | Newton iterations |
+//! |---|---|---|---|
+//! | canonical: the Jacobian gathered, ILU(0) and GMRES repeated on both ranks | 149 s | 3.73 | 145 |
+//! | distributed (`--linear-solver distributed_lu`): additive Schwarz, overlap 2, ILU(0) subdomains | 119 s | 2.98 | 145 |
+//!
+//! 1.25 times faster, and its ranks hold 445 / 268 MiB instead of about 650 MiB each with
+//! lagged factors. In part 3 the assembly took 3,076 s and the linear solves 1,207 s
+//! (`phase_seconds`): the GP integration is now the larger part, and the lever for the hour.
 //!
 //! **Where the time goes** with ILU (`perf record` on rank 0 for 30 s at t ≈ 1 s): 42 % in
 //! PETSc (the gather of the Jacobian onto every rank, its ILU, the GMRES products and
@@ -649,12 +687,6 @@
 //! The fourth row became the lagged factors' dynamic setting (commit b351936); with it MUMPS
 //! reached 0.78 s after 94 s, UMFPACK 0.64 s and SuperLU 0.56 s. That run reached t = 7.03 s
 //! at 3.51 s per step (2.80 Newton iterations per step, 651 / 646 MiB per rank).
-//!
-//! What remains between this and an hour: the canonical solver repeats the gather, the ILU and
-//! GMRES on every rank, so half of the time does not shrink with ranks; the distributed
-//! solver's additive Schwarz (`linear_solver: distributed_lu`) splits it, at more GMRES
-//! iterations (18.6 against 12 per solve on the small dam of `tests/dynamics.rs`), and was not
-//! run on this mesh.
 //!
 #![cfg_attr(doc, doc = embed_doc_image::embed_image!("accuracy", "scripts/figures/accuracy_cost.png"))]
 #![cfg_attr(doc, doc = embed_doc_image::embed_image!("mesh", "scripts/figures/mesh/accuracy_cost.png"))]

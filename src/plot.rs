@@ -342,7 +342,12 @@ fn draw_panel<DB: DrawingBackend>(
             .filter(|(x, y)| x.is_finite() && y.is_finite())
             .collect();
         let anno = match s.style {
-            SeriesStyle::Line => chart.draw_series(LineSeries::new(pts, color.stroke_width(2)))?,
+            // one path per segment: a thick polyline's miter joins draw a sharp reversal
+            // (a one-step spike of a time history) as a long needle out of the panel
+            SeriesStyle::Line => chart.draw_series(
+                pts.windows(2)
+                    .map(|ab| PathElement::new(vec![ab[0], ab[1]], color.stroke_width(2))),
+            )?,
             SeriesStyle::Markers => {
                 chart.draw_series(pts.into_iter().map(|p| Circle::new(p, 3, color.filled())))?
             }
@@ -407,6 +412,42 @@ fn read_font(candidates: &[PathBuf]) -> Result<(PathBuf, Vec<u8>), String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A time history with a one-step spike (the crest acceleration of a quake: 23, −172,
+    /// 78 m/s² on three steps) stays inside its panel: the rows of the panel's top margin,
+    /// above the plotting area, stay white. A thick polyline's miter join at the spike's sharp
+    /// reversals drew a needle through them.
+    #[test]
+    fn a_one_step_spike_stays_inside_its_panel() {
+        ensure_font().unwrap();
+        // 20 s at 0.01 s: a quarter of a pixel per step, so the reversals are nearly
+        // hairpins
+        let spike = [23.1, -172.3, 77.6];
+        let points: Vec<(f64, f64)> = (0..2001)
+            .map(|i| {
+                let a = match i {
+                    1210..=1212 => spike[i - 1210],
+                    _ => 3.0 * (i as f64 * 0.37).sin(),
+                };
+                (i as f64 * 0.01, a)
+            })
+            .collect();
+        let panel = Panel::new("", "t (s)", "a (m/s2)").with(Series::line("crest", points));
+        let (w, h) = (640u32, 480u32);
+        let mut buffer = vec![0u8; (w * h * 3) as usize];
+        {
+            let root = BitMapBackend::with_buffer(&mut buffer, (w, h)).into_drawing_area();
+            root.fill(&WHITE).unwrap();
+            draw_panel(&panel, &root).unwrap();
+            root.present().unwrap();
+        }
+        // the chart's margin is 12 px: nothing but background above it
+        let inked = buffer[..(10 * w * 3) as usize]
+            .iter()
+            .filter(|&&v| v != 255)
+            .count();
+        assert_eq!(inked, 0, "{inked} coloured bytes in the top 10 rows");
+    }
 
     #[test]
     fn writes_a_multi_panel_png() {

@@ -408,7 +408,7 @@ fn figs15_17(
     let fig16 = face_lines(
         mesh,
         &rows,
-        "Residual normal displacement excluding opening (seed Fig. 16)",
+        "Residual normal displacement (seed Fig. 16)",
         "delta_n - opening (mm, opening +)",
         normal,
     );
