@@ -597,10 +597,12 @@ fn a_quake_with_the_distributed_solver_agrees_with_the_canonical_one() {
     let dir = tempdir();
     let d = dir.path();
     gp_interface_dam_quake(d, 0.2, "", 5);
-    let scene = std::fs::read_to_string(d.join("dam.yaml")).unwrap();
-    let distributed = scene.replace("linear_solver: canonical_lu", "linear_solver: distributed_lu");
-    assert_ne!(scene, distributed, "the scene names its solver");
-    std::fs::write(d.join("distributed.yaml"), distributed).unwrap();
+    scene_variant(
+        d,
+        "distributed.yaml",
+        "linear_solver: canonical_lu",
+        "linear_solver: distributed_lu",
+    );
     let runs = [
         ("dam.yaml", 2, "canonical"),
         ("distributed.yaml", 1, "d1"),
@@ -658,18 +660,17 @@ fn the_extrapolating_time_step_predictor_saves_newton_iterations_for_the_same_qu
     let dir = tempdir();
     let d = dir.path();
     gp_interface_dam_quake(d, 0.3, "", 10);
-    let scene = std::fs::read_to_string(d.join("dam.yaml")).unwrap();
-    let predicted = scene.replace("output_every: 10 }", "output_every: 10, predictor: extrapolate }");
-    assert_ne!(scene, predicted, "the quake line takes the predictor");
-    std::fs::write(d.join("predicted.yaml"), predicted).unwrap();
+    scene_variant(
+        d,
+        "predicted.yaml",
+        "output_every: 10 }",
+        "output_every: 10, predictor: extrapolate }",
+    );
     let mut newton = Vec::new();
     for (yaml, out) in [("predicted.yaml", "extrapolate"), ("dam.yaml", "none")] {
         let o = cfrd_mpi(2, d, &["run", yaml, "-o", out, "-q"]);
         assert!(o.status.success(), "{out}: {}", text(&o));
-        let s: serde_json::Value =
-            serde_json::from_str(&std::fs::read_to_string(d.join(out).join("summary.json")).unwrap())
-                .unwrap();
-        newton.push(s["newton_iterations"].as_u64().expect("newton_iterations"));
+        newton.push(summary_count(&d.join(out), "newton_iterations"));
     }
     let o = common::cfrd(d, &["compare", "none/results.h5", "extrapolate/results.h5"]);
     let table = text(&o);
@@ -735,10 +736,7 @@ fn a_run_continues_from_its_checkpoint_on_another_linear_solver() {
         ];
         let o = cfrd_mpi(2, d, &args);
         assert!(o.status.success(), "{out}: {}", text(&o));
-        let s: serde_json::Value =
-            serde_json::from_str(&std::fs::read_to_string(d.join(out).join("summary.json")).unwrap())
-                .unwrap();
-        ksp.push(s["ksp_iterations"].as_u64().expect("ksp_iterations"));
+        ksp.push(summary_count(&d.join(out), "ksp_iterations"));
     }
     let o = common::cfrd(d, &["compare", "same/results.h5", "switched/results.h5"]);
     let table = text(&o);
@@ -756,4 +754,21 @@ fn a_run_continues_from_its_checkpoint_on_another_linear_solver() {
     );
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     assert!(text(&o).contains("distributed_lu"), "{}", text(&o));
+}
+
+/// Writes `name` into `d`: `dam.yaml` with `from` replaced by `to` (which must occur).
+fn scene_variant(d: &Path, name: &str, from: &str, to: &str) {
+    let scene = std::fs::read_to_string(d.join("dam.yaml")).unwrap();
+    let variant = scene.replace(from, to);
+    assert_ne!(scene, variant, "dam.yaml holds '{from}'");
+    std::fs::write(d.join(name), variant).unwrap();
+}
+
+/// The counter `key` of the run summary in the output directory `out`.
+fn summary_count(out: &Path, key: &str) -> u64 {
+    let text = std::fs::read_to_string(out.join("summary.json")).unwrap();
+    let s: serde_json::Value = serde_json::from_str(&text).unwrap();
+    s[key]
+        .as_u64()
+        .unwrap_or_else(|| panic!("summary.json has {key}"))
 }
