@@ -472,6 +472,7 @@ pub fn run_scene(
         }
     ));
     let counts = problem.interface_counts();
+    let element_seconds = problem.element_seconds();
     if counts.points > 0 {
         say(&format!(
             "interfaces: {} point(s), {} open, {} slipping",
@@ -491,6 +492,7 @@ pub fn run_scene(
     summary.total_seconds = crate::parallel::max_f64(world, t_all.elapsed().as_secs_f64());
     summary.ksp_iterations = report.ksp_iterations.iter().map(|&k| k as u64).sum();
     summary.newton_iterations = report.newton_iterations as u64;
+    summary.residual_evaluations = report.residual_evaluations;
     summary.steps = report.steps as u64;
     summary.cutbacks = report.cutbacks as u64;
     summary.newton_per_step = report.newton_per_step.clone();
@@ -503,6 +505,7 @@ pub fn run_scene(
     summary.checkpoint_seconds = crate::parallel::max_f64(world, ckpt_seconds);
     summary.stage_seconds = report.stage_seconds.clone();
     summary.modal = modal;
+    summary.gather_element_seconds(world, element_seconds);
     summary.gather_peak_memory(world);
     let written = match rank {
         0 => summary.write_json(&out_dir.join("summary.json")),

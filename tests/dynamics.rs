@@ -687,6 +687,52 @@ fn the_extrapolating_time_step_predictor_saves_newton_iterations_for_the_same_qu
     assert!(quake > 0.0 && quake < 1.0e-5, "{table}");
 }
 
+/// A time step's Newton corrections take the full step when it lowers ‖F‖
+/// (`dynamic.line_search: full_step_first`, the default) instead of the secant line search of
+/// the static stages (`secant`, three residual evaluations per iteration): the same quake of
+/// the small GP-interface dam needs far fewer residual evaluations, the static stages stay the
+/// same bit for bit, and both runs, converged every step to the same tolerance, agree in the
+/// quake's displacements to within that tolerance (relative, `cfrd compare`).
+#[test]
+fn the_full_step_first_line_search_saves_residual_evaluations_for_the_same_quake() {
+    let _turn = mpi_turn();
+    let dir = tempdir();
+    let d = dir.path();
+    gp_interface_dam_quake(d, 0.3, "", 10);
+    scene_variant(
+        d,
+        "secant.yaml",
+        "output_every: 10 }",
+        "output_every: 10, line_search: secant }",
+    );
+    // the static stages are the same in both scenes: their evaluations, counted once, are
+    // taken off both runs' totals
+    run_before_quake(d, "pre");
+    let statics = summary_count(&d.join("pre"), "residual_evaluations");
+    let mut evaluations = Vec::new();
+    for (yaml, out) in [("dam.yaml", "full"), ("secant.yaml", "secant")] {
+        let o = cfrd_mpi(2, d, &["run", yaml, "-o", out, "-q"]);
+        assert!(o.status.success(), "{out}: {}", text(&o));
+        evaluations.push(summary_count(&d.join(out), "residual_evaluations") - statics);
+    }
+    let o = common::cfrd(d, &["compare", "secant/results.h5", "full/results.h5"]);
+    let table = text(&o);
+    let (quake, statics) = (
+        displacement_difference(&table, true),
+        displacement_difference(&table, false),
+    );
+    println!(
+        "residual evaluations in the quake, full step first / secant: {} / {}; displacement difference {quake:.2e} in the quake, {statics:.2e} before",
+        evaluations[0], evaluations[1]
+    );
+    assert!(
+        3 * evaluations[0] < 2 * evaluations[1],
+        "residual evaluations {evaluations:?}"
+    );
+    assert_eq!(statics, 0.0, "{table}");
+    assert!(quake < 1.0e-5, "{table}");
+}
+
 /// `--linear-solver` continues a run from its checkpoint on another solver, the scene (whose
 /// hash the restart checks) unchanged: the small GP-interface dam stopped after its
 /// impoundment on the canonical solver, then its quake on 2 ranks with the distributed one
@@ -699,28 +745,7 @@ fn a_run_continues_from_its_checkpoint_on_another_linear_solver() {
     let dir = tempdir();
     let d = dir.path();
     gp_interface_dam_quake(d, 0.2, "", 5);
-    let o = common::cfrd(d, &["check", "dam.yaml"]);
-    let stages = text(&o)
-        .split(" stage(s)")
-        .next()
-        .and_then(|head| head.rsplit(' ').next()?.parse::<usize>().ok())
-        .unwrap_or(0);
-    assert!(stages > 1, "the schedule's length: {}", text(&o));
-    let before_quake = (stages - 1).to_string();
-    let o = cfrd_mpi(
-        2,
-        d,
-        &[
-            "run",
-            "dam.yaml",
-            "-o",
-            "pre",
-            "-q",
-            "--stop-after-stage",
-            &before_quake,
-        ],
-    );
-    assert!(o.status.success(), "{}", text(&o));
+    run_before_quake(d, "pre");
     let mut ksp = Vec::new();
     for (out, solver) in [("same", "canonical_lu"), ("switched", "distributed_lu")] {
         let args = [
@@ -765,6 +790,30 @@ fn scene_variant(d: &Path, name: &str, from: &str, to: &str) {
 }
 
 /// The counter `key` of the run summary in the output directory `out`.
+/// Runs `dam.yaml` in `d` on 2 ranks up to the end of the stage before its quake (the last
+/// stage of its schedule) into `out`.
+fn run_before_quake(d: &Path, out: &str) {
+    let o = common::cfrd(d, &["check", "dam.yaml"]);
+    let stages = text(&o)
+        .split(" stage(s)")
+        .next()
+        .and_then(|head| head.rsplit(' ').next()?.parse::<usize>().ok())
+        .unwrap_or(0);
+    assert!(stages > 1, "the schedule's length: {}", text(&o));
+    let before_quake = (stages - 1).to_string();
+    let args = [
+        "run",
+        "dam.yaml",
+        "-o",
+        out,
+        "-q",
+        "--stop-after-stage",
+        &before_quake,
+    ];
+    let o = cfrd_mpi(2, d, &args);
+    assert!(o.status.success(), "{}", text(&o));
+}
+
 fn summary_count(out: &Path, key: &str) -> u64 {
     let text = std::fs::read_to_string(out.join("summary.json")).unwrap();
     let s: serde_json::Value = serde_json::from_str(&text).unwrap();

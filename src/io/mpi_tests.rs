@@ -503,6 +503,9 @@ fn check_summary(comm: &SimpleCommunicator) {
         summary.peak_memory_bytes,
         *summary.peak_memory_bytes_per_rank.iter().max().unwrap()
     );
+    summary.gather_element_seconds(comm, 1.5 * (comm.rank() as f64 + 1.0));
+    let expected: Vec<f64> = (0..comm.size()).map(|r| 1.5 * (r as f64 + 1.0)).collect();
+    assert_eq!(summary.element_seconds_per_rank, expected);
     let mut timer = PhaseTimer::new();
     timer.add(
         Phase::Solve,

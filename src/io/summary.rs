@@ -208,6 +208,10 @@ pub struct RunSummary {
     pub ksp_iterations: u64,
     /// Total Newton iterations.
     pub newton_iterations: u64,
+    /// Residual evaluations (material integrations of the whole model): the Newton iterations,
+    /// step starts and line-search trial points.
+    #[serde(default)]
+    pub residual_evaluations: u64,
     /// Number of load or time steps completed.
     pub steps: u64,
     /// Step cut-backs (failed steps retried with a smaller increment).
@@ -248,6 +252,11 @@ pub struct RunSummary {
     /// The modal analysis of the run, if a stage asked for one (spec seismic §4 items 4, 9).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub modal: Option<ModalSummary>,
+    /// Seconds each rank spent in its element loops (material updates and element matrices,
+    /// without the waits of the collective assembly) in this run: the spread is the load
+    /// imbalance of the assembly, which the partition balances by element counts.
+    #[serde(default)]
+    pub element_seconds_per_rank: Vec<f64>,
     /// Peak resident memory (bytes), maximum over ranks.
     pub peak_memory_bytes: u64,
     /// Peak resident memory (bytes) of each rank.
@@ -286,6 +295,13 @@ impl RunSummary {
         let per_rank = gather_peak_memory(comm);
         self.peak_memory_bytes = per_rank.iter().copied().max().unwrap_or(0);
         self.peak_memory_bytes_per_rank = per_rank;
+    }
+
+    /// Fills `element_seconds_per_rank` from every rank's `seconds`. Collective.
+    pub fn gather_element_seconds(&mut self, comm: &SimpleCommunicator, seconds: f64) {
+        let mut all = vec![0.0f64; comm.size() as usize];
+        comm.all_gather_into(&seconds, &mut all[..]);
+        self.element_seconds_per_rank = all;
     }
 
     /// Pretty JSON text.
@@ -382,6 +398,8 @@ mod tests {
             total_seconds: 2.0,
             ksp_iterations: 40,
             newton_iterations: 6,
+            residual_evaluations: 9,
+            element_seconds_per_rank: vec![0.5, 0.25],
             steps: 3,
             cutbacks: 1,
             newton_per_step: vec![2, 2, 2],

@@ -723,6 +723,21 @@ pub struct Snes {
     factorizations: u64,
     /// The direct solvers are set for the Jacobians of a dynamic stage ([`Snes::set_time_stepping`]).
     time_stepping: bool,
+    /// How a Newton correction is scaled ([`Snes::set_line_search`]).
+    line_search: LineSearch,
+}
+
+/// How a Newton correction δ is scaled before it is applied (x ← x − λ·δ). Both rest on the
+/// problem's own merit function ‖F‖² ([`SnesProblem::objective`], exact sums), so every
+/// decision is the same at any rank count.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LineSearch {
+    /// PETSc's `l2`: the secant minimum of ‖F(x − λδ)‖² from λ = 1 and ½, at every
+    /// iteration (three residual evaluations per iteration).
+    Secant,
+    /// The full step when it lowers ‖F‖² (one residual evaluation); otherwise the minimum
+    /// of the parabola through λ = 0, ½, 1 (two more), halving while F cannot be evaluated.
+    FullStepFirst,
 }
 
 /// The linear solver of the Newton corrections (the scene's `solver.linear_solver`).
@@ -775,6 +790,7 @@ impl Snes {
             distributed_lu: None,
             factorizations: 0,
             time_stepping: false,
+            line_search: LineSearch::Secant,
         };
         s.configure()?;
         Ok(s)
@@ -785,6 +801,12 @@ impl Snes {
     /// [`super::lagged_lu`]).
     pub fn set_time_stepping(&mut self, on: bool) {
         self.time_stepping = on;
+    }
+
+    /// The line search of the Newton corrections from the next [`Snes::reset`] on
+    /// (`-snes_linesearch_type` still overrides it).
+    pub fn set_line_search(&mut self, line_search: LineSearch) {
+        self.line_search = line_search;
     }
 
     /// Replaces the solver by a new one with the same settings: the next solve builds the
@@ -832,12 +854,14 @@ impl Snes {
         // of tests/step_control.rs with a 10 MPa surcharge and at most 6 Newton iterations it
         // needs no cut-back ([4]) where the full step (`basic`) needs one ([6, 4]) and
         // backtracking (`bt`) two ([6, 4, 4]); `-snes_linesearch_type` overrides
+        // (`LineSearch::FullStepFirst`: a shell whose function `solve` sets)
         let mut ls: p::SNESLineSearch = null_mut();
         call!(SNESGetLineSearch(s.raw, &mut ls))?;
-        call!(SNESLineSearchSetType(
-            ls,
-            p::SNESLINESEARCHL2.as_ptr() as *const c_char
-        ))?;
+        let kind = match s.line_search {
+            LineSearch::Secant => p::SNESLINESEARCHL2.as_ptr(),
+            LineSearch::FullStepFirst => p::SNESLINESEARCHSHELL.as_ptr(),
+        };
+        call!(SNESLineSearchSetType(ls, kind as *const c_char))?;
         let mut ksp: p::KSP = null_mut();
         call!(SNESGetKSP(s.raw, &mut ksp))?;
         match (&s.canonical_lu, &s.distributed_lu) {
@@ -882,6 +906,14 @@ impl Snes {
             None
         ))?;
         call!(SNESSetObjective(self.raw, Some(snes_objective::<P>), ctx))?;
+        let mut ls: p::SNESLineSearch = null_mut();
+        call!(SNESGetLineSearch(self.raw, &mut ls))?;
+        // a no-op unless the line search is the shell (options may have chosen another)
+        call!(SNESLineSearchShellSetUserFunc(
+            ls,
+            Some(full_step_first::<P>),
+            ctx
+        ))?;
         call!(SNESSolve(self.raw, null_mut(), x.raw))?;
         let (mut reason, mut its) = (0, 0);
         call!(SNESGetConvergedReason(self.raw, &mut reason))?;
@@ -931,6 +963,89 @@ unsafe extern "C" fn snes_objective<P: SnesProblem>(
         *obj = value;
     }
     0
+}
+
+/// [`LineSearch::FullStepFirst`] as PETSc's shell line search: X ← X − λ·Y with F(X) in F.
+unsafe extern "C" fn full_step_first<P: SnesProblem>(
+    ls: p::SNESLineSearch,
+    ctx: *mut std::ffi::c_void,
+) -> p::PetscErrorCode {
+    // SAFETY: as in snes_residual: ctx is the `&mut P` of the running SNESSolve.
+    let problem = unsafe { &mut *(ctx as *mut P) };
+    match full_step_first_apply(ls, problem) {
+        Ok(()) => 0,
+        Err(e) => e.code.max(CALLBACK_FAILED),
+    }
+}
+
+/// The body of [`full_step_first`].
+fn full_step_first_apply<P: SnesProblem>(ls: p::SNESLineSearch, problem: &mut P) -> Result<(), PetscError> {
+    let (mut x, mut f, mut y, mut w, mut g) = (null_mut(), null_mut(), null_mut(), null_mut(), null_mut());
+    call!(SNESLineSearchGetVecs(ls, &mut x, &mut f, &mut y, &mut w, &mut g))?;
+    let (x, mut f, y, mut w) = (borrowed(x), borrowed(f), borrowed(y), borrowed(w));
+    let f0 = problem.objective(&x)?.unwrap_or(f64::INFINITY);
+    let mut merit = |lambda: f64, w: &mut Vector| -> Result<f64, PetscError> {
+        call!(VecWAXPY(w.raw, -lambda, y.raw, x.raw))?;
+        Ok(problem.objective(w)?.unwrap_or(f64::INFINITY))
+    };
+    let g1 = merit(1.0, &mut w)?;
+    let lambda = if g1 < f0 {
+        1.0
+    } else {
+        match fallback_step(f0, g1, &mut |l| merit(l, &mut w))? {
+            Some(l) => l,
+            None => {
+                call!(SNESLineSearchSetReason(ls, p::SNES_LINESEARCH_FAILED_DOMAIN))?;
+                return Ok(());
+            }
+        }
+    };
+    call!(VecWAXPY(w.raw, -lambda, y.raw, x.raw))?;
+    // F at the chosen point: known from its merit evaluation unless λ is new
+    if !problem.residual(&w, &mut f)? {
+        call!(SNESLineSearchSetReason(ls, p::SNES_LINESEARCH_FAILED_DOMAIN))?;
+        return Ok(());
+    }
+    call!(VecCopy(w.raw, x.raw))?;
+    let (mut xnorm, mut fnorm, mut ynorm) = (0.0, 0.0, 0.0);
+    call!(VecNorm(x.raw, p::NORM_2, &mut xnorm))?;
+    call!(VecNorm(f.raw, p::NORM_2, &mut fnorm))?;
+    call!(VecNorm(y.raw, p::NORM_2, &mut ynorm))?;
+    call!(SNESLineSearchSetNorms(ls, xnorm, fnorm, ynorm))?;
+    call!(SNESLineSearchSetReason(ls, p::SNES_LINESEARCH_SUCCEEDED))
+}
+
+/// The step length when the full step did not lower the merit φ (φ(0) = `f0`, φ(1) = `g1`):
+/// the minimum of the parabola through λ = 0, ½, 1 in [0.1, 1] (the smaller of φ(½), φ(1)
+/// where it has none), or the first λ = ½, ¼, … ≥ 1/64 where φ is finite; `None` if there is
+/// none. `merit(λ)` evaluates φ.
+fn fallback_step(
+    f0: f64,
+    g1: f64,
+    merit: &mut dyn FnMut(f64) -> Result<f64, PetscError>,
+) -> Result<Option<f64>, PetscError> {
+    let h = merit(0.5)?;
+    if h.is_finite() && g1.is_finite() && f0.is_finite() {
+        let c = 2.0 * f0 - 4.0 * h + 2.0 * g1;
+        let b = -3.0 * f0 + 4.0 * h - g1;
+        return Ok(Some(if c > 0.0 {
+            (-b / (2.0 * c)).clamp(0.1, 1.0)
+        } else if h < g1 {
+            0.5
+        } else {
+            1.0
+        }));
+    }
+    let mut lambda = 0.5;
+    let mut value = h;
+    while !value.is_finite() {
+        lambda *= 0.5;
+        if lambda < 1.0 / 64.0 {
+            return Ok(None);
+        }
+        value = merit(lambda)?;
+    }
+    Ok(Some(lambda))
 }
 
 /// A direct solver whose result does not depend on the rank count (a preconditioner shell
@@ -1433,4 +1548,54 @@ unsafe extern "C" fn snes_converged<P: SnesProblem>(
         *reason = r;
     }
     0
+}
+
+#[cfg(test)]
+mod line_search_tests {
+    use super::fallback_step;
+
+    /// The merit values at the fallback's trial points, recorded.
+    fn step_of(f0: f64, g1: f64, phi: impl Fn(f64) -> f64) -> (Option<f64>, Vec<f64>) {
+        let mut asked = Vec::new();
+        let step = fallback_step(f0, g1, &mut |l| {
+            asked.push(l);
+            Ok(phi(l))
+        })
+        .expect("no PETSc call");
+        (step, asked)
+    }
+
+    #[test]
+    fn an_overshooting_step_is_cut_to_the_parabolas_minimum() {
+        // φ(λ) = 1 − 2λ + 3λ² (the full step overshoots: φ(1) = 2 > φ(0) = 1), minimum at 1/3
+        let phi = |l: f64| 1.0 - 2.0 * l + 3.0 * l * l;
+        let (step, asked) = step_of(phi(0.0), phi(1.0), phi);
+        assert_eq!(asked, vec![0.5]);
+        assert!((step.unwrap() - 1.0 / 3.0).abs() < 1e-15, "{step:?}");
+        // a minimum close to zero is kept at 0.1
+        let steep = |l: f64| 1.0 - 2.0 * l + 50.0 * l * l;
+        assert_eq!(step_of(steep(0.0), steep(1.0), steep).0, Some(0.1));
+    }
+
+    #[test]
+    fn a_concave_merit_takes_the_lower_of_the_two_trial_points() {
+        // φ(λ) = 1 + 2λ − λ²: φ(½) = 1.75 < φ(1) = 2
+        let phi = |l: f64| 1.0 + 2.0 * l - l * l;
+        assert_eq!(step_of(phi(0.0), phi(1.0), phi).0, Some(0.5));
+        // φ(λ) = 1 + 2λ − 1.9λ²: φ(1) = 1.1 < φ(½) = 1.525
+        let phi = |l: f64| 1.0 + 2.0 * l - 1.9 * l * l;
+        assert_eq!(step_of(phi(0.0), phi(1.0), phi).0, Some(1.0));
+    }
+
+    #[test]
+    fn points_where_the_residual_fails_are_halved_away_or_reported() {
+        // F cannot be evaluated beyond λ = 0.2: the first finite point of ½, ¼, ⅛
+        let (step, asked) = step_of(1.0, f64::INFINITY, |l| if l > 0.2 { f64::INFINITY } else { 0.5 });
+        assert_eq!(step, Some(0.125));
+        assert_eq!(asked, vec![0.5, 0.25, 0.125]);
+        // nowhere down to 1/64: no step
+        let (step, asked) = step_of(1.0, f64::INFINITY, |_| f64::INFINITY);
+        assert_eq!(step, None);
+        assert_eq!(asked.last().copied(), Some(1.0 / 64.0));
+    }
 }

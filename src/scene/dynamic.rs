@@ -17,10 +17,11 @@
 //!       output_every: 10                    # fields every 10 steps (0: at the end only)
 //!       # predictor: extrapolate            # start each step's Newton iterations from
 //!       #                                   # u₀ + Δt·v₀ (default none: from u₀)
+//!       # line_search: secant               # default full_step_first
 //! ```
 
 use super::error::SceneError;
-use super::schema::Predictor;
+use super::schema::{LineSearch, Predictor};
 use crate::seismic::Accelerogram;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
@@ -68,6 +69,16 @@ pub struct DynamicSpec {
     /// mesh)").
     #[serde(default)]
     pub predictor: Predictor,
+    /// How a time step's Newton corrections are scaled: `full_step_first` (the default) or
+    /// `secant`, the static stages' default ([`LineSearch`]). The two agree to within the
+    /// Newton tolerance's effect on the path-dependent materials ([`crate::performance`], "The
+    /// seed quake (coarse mesh)").
+    #[serde(default = "full_step_first")]
+    pub line_search: LineSearch,
+}
+
+fn full_step_first() -> LineSearch {
+    LineSearch::FullStepFirst
 }
 
 fn one() -> f64 {
@@ -174,6 +185,8 @@ pub struct DynamicStage {
     pub output_every: u32,
     /// The initial guess of a time step.
     pub predictor: Predictor,
+    /// How a time step's Newton corrections are scaled.
+    pub line_search: LineSearch,
 }
 
 /// Largest number of time steps of one dynamic stage.
@@ -227,6 +240,7 @@ pub fn resolve(
         damping,
         output_every: spec.output_every,
         predictor: spec.predictor,
+        line_search: spec.line_search,
     })
 }
 

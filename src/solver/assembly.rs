@@ -34,6 +34,7 @@ impl Model<'_> {
         // the same at any rank count)
         let mut diagonals: Vec<f64> = Vec::new();
         let mut local = Ok(());
+        let started = std::time::Instant::now();
         for i in 0..self.disc.elements.len() {
             let (b, _) = self.elem_block[i];
             if !self.active_block[b] {
@@ -55,6 +56,7 @@ impl Model<'_> {
                 break;
             }
         }
+        self.element_seconds += started.elapsed().as_secs_f64();
         f_int.assemble()?;
         if want_k {
             self.k.assemble()?;

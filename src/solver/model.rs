@@ -112,6 +112,10 @@ pub struct Model<'a> {
     /// Displacement of each evaluated element's nodes when it was placed: strains count from
     /// there.
     pub(super) elem_ref: Vec<Vector24>,
+    /// Seconds this rank spent in its element loops (material updates, element matrices and
+    /// their insertion), without the waits of the collective assembly: the ranks' figures
+    /// side by side show the load balance of the assembly.
+    pub(super) element_seconds: f64,
 }
 
 impl<'a> Model<'a> {
@@ -161,6 +165,7 @@ impl<'a> Model<'a> {
             gather,
             gather_committed,
             dirichlet_diag: 1.0,
+            element_seconds: 0.0,
             active_block: vec![false; mesh.blocks.len()],
             node_active: vec![false; mesh.num_nodes()],
             elem_ref: vec![Vector24::zeros(); n_elements],

@@ -192,6 +192,7 @@ impl NewtonStep<'_, '_> {
     /// Newton decision is the same at any rank count). `Ok(false)`: a material update failed.
     fn evaluate_residual(&mut self, x: &Vector, f: &mut Vector) -> Result<bool, PetscError> {
         self.residual_at = None;
+        self.report.residual_evaluations += 1;
         if !self.evaluate_at(x, false, false)? {
             return Ok(false);
         }

@@ -113,6 +113,12 @@ impl<'a> Problem<'a> {
         &self.model.disc
     }
 
+    /// Seconds this rank has spent in its element loops so far ([`Model`]'s load-balance
+    /// measure; rank-local, not collective).
+    pub fn element_seconds(&self) -> f64 {
+        self.model.element_seconds
+    }
+
     /// Counts of open and slipping interface points in the committed state (collective).
     pub fn interface_counts(&self) -> InterfaceCounts {
         self.model.interface_counts()

@@ -9,6 +9,10 @@ use crate::tensor::{Strain6, Stress6};
 pub struct SolveReport {
     /// Newton iterations.
     pub newton_iterations: u32,
+    /// Evaluations of the residual F (each an integration of every material point): one per
+    /// Newton iteration and step start, plus the line search's trial points.
+    #[serde(default)]
+    pub residual_evaluations: u64,
     /// KSP iterations of each linear solve.
     pub ksp_iterations: Vec<u32>,
     /// Relative residual after each Newton iteration.

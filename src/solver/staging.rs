@@ -9,7 +9,7 @@ use super::solid::Vector24;
 use super::state::{ProblemState, StageProgress};
 use super::step_control::StepControl;
 use crate::scene::dynamic::Anchors;
-use crate::scene::schema::{PlacedNodes, Predictor};
+use crate::scene::schema::{LineSearch, PlacedNodes, Predictor};
 
 impl Problem<'_> {
     /// Starts stage `k` of the scene: places its blocks (strain-free: their states start from
@@ -168,11 +168,20 @@ impl Problem<'_> {
     fn fix_for_stage(&mut self) -> Result<(), SolveError> {
         self.constraints
             .for_stage(&self.model.disc, &self.model.node_active, &self.u_stage_start);
-        let dynamic = self.scene.stages[self.stage].dynamic.is_some();
-        self.snes
+        let dynamic = &self.scene.stages[self.stage].dynamic;
+        let line_search = match dynamic {
+            Some(d) => d.line_search,
+            None => self.scene.file.solver.line_search,
+        };
+        let snes = self
+            .snes
             .as_mut()
-            .expect("the nonlinear solver is in place between steps")
-            .set_time_stepping(dynamic);
+            .expect("the nonlinear solver is in place between steps");
+        snes.set_time_stepping(dynamic.is_some());
+        snes.set_line_search(match line_search {
+            LineSearch::Secant => crate::linalg::petsc::LineSearch::Secant,
+            LineSearch::FullStepFirst => crate::linalg::petsc::LineSearch::FullStepFirst,
+        });
         self.fresh_preconditioner()
     }
 
