@@ -684,6 +684,45 @@
 //! The cost per step follows the Newton iterations, which follow the shaking (strongest at
 //! 9–12 s). The goal of under an hour is missed by 43 %.
 //!
+//! **The ideal elasto-plastic medium quake in one part, under an hour** (build of d9662ef:
+//! the distributed solver and the quake's full-step-first line search; `/usr/bin/time -v
+//! mpirun -n 2 cfrd run inputs/scenes/seed_medium_mohr_coulomb_quake.yaml -o OUT --restart
+//! CKPT --checkpoint-every 100 --linear-solver distributed_lu`, from the post-impoundment
+//! checkpoint, alone on the machine except for two stops of 196 s while compiles ran):
+//! **3,121 s (52.0 min)** net of the stops (3,318 s wall), 1.56 s per step, 5,587 Newton
+//! iterations (2.79 per step), 7,615 residual evaluations (1.36 per iteration, where the
+//! secant line search takes about 3), no cut-back, 498 / 271 MiB per rank. Assembly 1,758 s,
+//! linear solves 1,510 s (`phase_seconds`); the element loops took 1,704 s on rank 0 and
+//! 1,511 s on rank 1 (`element_seconds_per_rank`): rank 0 owns the nodes shared by the two
+//! parts and so also evaluates the elements of rank 1 around them. Per second of quake:
+//!
+//! | quake time | s per step | Newton per step |
+//! |---|---|---|
+//! | 0–1 s | 0.96 | 1.59 |
+//! | 1–2 s | 1.25 | 2.26 |
+//! | 2–3 s | 1.35 | 2.57 |
+//! | 3–4 s | 1.93 | 3.14 |
+//! | 4–5 s | 1.72 | 2.86 |
+//! | 5–6 s | 1.69 | 2.93 |
+//! | 6–7 s | 1.67 | 2.92 |
+//! | 7–8 s | 1.87 | 3.30 |
+//! | 8–9 s | 1.93 | 3.23 |
+//! | 9–10 s | 2.04 | 3.26 |
+//! | 10–11 s | 2.01 | 3.51 |
+//! | 11–12 s | 1.68 | 3.17 |
+//! | 12–13 s | 1.84 | 3.57 |
+//! | 13–14 s | 1.52 | 3.11 |
+//! | 14–15 s | 1.55 | 3.01 |
+//! | 15–16 s | 1.45 | 2.74 |
+//! | 16–17 s | 1.31 | 2.55 |
+//! | 17–18 s | 1.22 | 2.11 |
+//! | 18–19 s | 1.13 | 2.05 |
+//! | 19–20 s | 1.08 | 2.00 |
+//!
+//! The GP medium quake has not been rerun with this build; from the side-by-side window above
+//! (1.68 times at 4.03–4.62 s) it would take about 51 min instead of 85.7, a projection, not
+//! a measurement.
+//!
 //! **The distributed solver in the quake**, side by side: from part 2's step checkpoint at
 //! t = 4.02 s, 40 time steps each, one run after the other alone on the machine (build
 //! 8e8aa44):
