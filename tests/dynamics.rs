@@ -614,12 +614,7 @@ fn a_quake_with_the_distributed_solver_agrees_with_the_canonical_one() {
     }
     for out in ["d1", "d2"] {
         let b = format!("{out}/results.h5");
-        let o = common::cfrd(d, &["compare", "canonical/results.h5", &b]);
-        let table = text(&o);
-        let (quake, statics) = (
-            displacement_difference(&table, true),
-            displacement_difference(&table, false),
-        );
+        let (quake, statics, table) = compare_displacements(d, "canonical/results.h5", &b);
         println!("{out}: displacement relative to the canonical run {quake:.2e} in the quake, {statics:.2e} before");
         assert!(quake.is_finite() && statics > 0.0, "{table}");
         if out == "d1" {
@@ -633,6 +628,29 @@ fn a_quake_with_the_distributed_solver_agrees_with_the_canonical_one() {
 
 /// The largest relative displacement difference of a `cfrd compare` table over the quake's
 /// steps (`quake`) or over the static stages' steps.
+/// `cfrd compare A B` in `d`: the largest relative displacement difference in the quake and
+/// before it, and the table.
+fn compare_displacements(d: &Path, a: &str, b: &str) -> (f64, f64, String) {
+    let o = common::cfrd(d, &["compare", a, b]);
+    let table = text(&o);
+    (
+        displacement_difference(&table, true),
+        displacement_difference(&table, false),
+        table,
+    )
+}
+
+/// Runs each `(scene, output)` of `d` on 2 ranks and returns the summary counter `key` of each.
+fn counts_of_runs(d: &Path, runs: &[(&str, &str)], key: &str) -> Vec<u64> {
+    runs.iter()
+        .map(|&(yaml, out)| {
+            let o = cfrd_mpi(2, d, &["run", yaml, "-o", out, "-q"]);
+            assert!(o.status.success(), "{out}: {}", text(&o));
+            summary_count(&d.join(out), key)
+        })
+        .collect()
+}
+
 fn displacement_difference(table: &str, quake: bool) -> f64 {
     table
         .lines()
@@ -666,18 +684,9 @@ fn the_extrapolating_time_step_predictor_saves_newton_iterations_for_the_same_qu
         "output_every: 10 }",
         "output_every: 10, predictor: extrapolate }",
     );
-    let mut newton = Vec::new();
-    for (yaml, out) in [("predicted.yaml", "extrapolate"), ("dam.yaml", "none")] {
-        let o = cfrd_mpi(2, d, &["run", yaml, "-o", out, "-q"]);
-        assert!(o.status.success(), "{out}: {}", text(&o));
-        newton.push(summary_count(&d.join(out), "newton_iterations"));
-    }
-    let o = common::cfrd(d, &["compare", "none/results.h5", "extrapolate/results.h5"]);
-    let table = text(&o);
-    let (quake, statics) = (
-        displacement_difference(&table, true),
-        displacement_difference(&table, false),
-    );
+    let runs = [("predicted.yaml", "extrapolate"), ("dam.yaml", "none")];
+    let newton = counts_of_runs(d, &runs, "newton_iterations");
+    let (quake, statics, table) = compare_displacements(d, "none/results.h5", "extrapolate/results.h5");
     println!(
         "Newton iterations with / without the predictor: {} / {}; displacement difference {quake:.2e} in the quake, {statics:.2e} before",
         newton[0], newton[1]
@@ -709,18 +718,12 @@ fn the_full_step_first_line_search_saves_residual_evaluations_for_the_same_quake
     // taken off both runs' totals
     run_before_quake(d, "pre");
     let statics = summary_count(&d.join("pre"), "residual_evaluations");
-    let mut evaluations = Vec::new();
-    for (yaml, out) in [("dam.yaml", "full"), ("secant.yaml", "secant")] {
-        let o = cfrd_mpi(2, d, &["run", yaml, "-o", out, "-q"]);
-        assert!(o.status.success(), "{out}: {}", text(&o));
-        evaluations.push(summary_count(&d.join(out), "residual_evaluations") - statics);
-    }
-    let o = common::cfrd(d, &["compare", "secant/results.h5", "full/results.h5"]);
-    let table = text(&o);
-    let (quake, statics) = (
-        displacement_difference(&table, true),
-        displacement_difference(&table, false),
-    );
+    let runs = [("dam.yaml", "full"), ("secant.yaml", "secant")];
+    let evaluations: Vec<u64> = counts_of_runs(d, &runs, "residual_evaluations")
+        .into_iter()
+        .map(|n| n - statics)
+        .collect();
+    let (quake, statics, table) = compare_displacements(d, "secant/results.h5", "full/results.h5");
     println!(
         "residual evaluations in the quake, full step first / secant: {} / {}; displacement difference {quake:.2e} in the quake, {statics:.2e} before",
         evaluations[0], evaluations[1]
@@ -763,9 +766,7 @@ fn a_run_continues_from_its_checkpoint_on_another_linear_solver() {
         assert!(o.status.success(), "{out}: {}", text(&o));
         ksp.push(summary_count(&d.join(out), "ksp_iterations"));
     }
-    let o = common::cfrd(d, &["compare", "same/results.h5", "switched/results.h5"]);
-    let table = text(&o);
-    let quake = displacement_difference(&table, true);
+    let (quake, _, table) = compare_displacements(d, "same/results.h5", "switched/results.h5");
     println!("KSP iterations on the scene's / the distributed solver: {ksp:?}; displacement difference in the quake {quake:.2e}");
     assert_ne!(
         ksp[0], ksp[1],
