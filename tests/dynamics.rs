@@ -594,15 +594,16 @@ fn a_quake_whose_linear_solves_fail_is_cut_back_and_reported_with_petscs_reason(
 #[test]
 fn a_quake_with_the_distributed_solver_agrees_with_the_canonical_one() {
     let _turn = mpi_turn();
-    let dir = tempdir();
-    let d = dir.path();
-    gp_interface_dam_quake(d, 0.2, "", 5);
-    scene_variant(
-        d,
-        "distributed.yaml",
-        "linear_solver: canonical_lu",
-        "linear_solver: distributed_lu",
+    let dir = dam_quake_and_variant(
+        0.2,
+        5,
+        (
+            "distributed.yaml",
+            "linear_solver: canonical_lu",
+            "linear_solver: distributed_lu",
+        ),
     );
+    let d = dir.path();
     let runs = [
         ("dam.yaml", 2, "canonical"),
         ("distributed.yaml", 1, "d1"),
@@ -675,15 +676,16 @@ fn displacement_difference(table: &str, quake: bool) -> f64 {
 #[test]
 fn the_extrapolating_time_step_predictor_saves_newton_iterations_for_the_same_quake() {
     let _turn = mpi_turn();
-    let dir = tempdir();
-    let d = dir.path();
-    gp_interface_dam_quake(d, 0.3, "", 10);
-    scene_variant(
-        d,
-        "predicted.yaml",
-        "output_every: 10 }",
-        "output_every: 10, predictor: extrapolate }",
+    let dir = dam_quake_and_variant(
+        0.3,
+        10,
+        (
+            "predicted.yaml",
+            "output_every: 10 }",
+            "output_every: 10, predictor: extrapolate }",
+        ),
     );
+    let d = dir.path();
     let runs = [("predicted.yaml", "extrapolate"), ("dam.yaml", "none")];
     let newton = counts_of_runs(d, &runs, "newton_iterations");
     let (quake, statics, table) = compare_displacements(d, "none/results.h5", "extrapolate/results.h5");
@@ -705,15 +707,16 @@ fn the_extrapolating_time_step_predictor_saves_newton_iterations_for_the_same_qu
 #[test]
 fn the_full_step_first_line_search_saves_residual_evaluations_for_the_same_quake() {
     let _turn = mpi_turn();
-    let dir = tempdir();
-    let d = dir.path();
-    gp_interface_dam_quake(d, 0.3, "", 10);
-    scene_variant(
-        d,
-        "secant.yaml",
-        "output_every: 10 }",
-        "output_every: 10, line_search: secant }",
+    let dir = dam_quake_and_variant(
+        0.3,
+        10,
+        (
+            "secant.yaml",
+            "output_every: 10 }",
+            "output_every: 10, line_search: secant }",
+        ),
     );
+    let d = dir.path();
     // the static stages are the same in both scenes: their evaluations, counted once, are
     // taken off both runs' totals
     run_before_quake(d, "pre");
@@ -780,6 +783,19 @@ fn a_run_continues_from_its_checkpoint_on_another_linear_solver() {
     );
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     assert!(text(&o).contains("distributed_lu"), "{}", text(&o));
+}
+
+/// A new directory with the small GP-interface dam and its quake (`gp_interface_dam_quake`, no
+/// extra output) in `dam.yaml`, and the scene variant `(name, from, to)` ([`scene_variant`]).
+fn dam_quake_and_variant(
+    duration: f64,
+    every: u32,
+    (name, from, to): (&str, &str, &str),
+) -> tempfile::TempDir {
+    let dir = tempdir();
+    gp_interface_dam_quake(dir.path(), duration, "", every);
+    scene_variant(dir.path(), name, from, to);
+    dir
 }
 
 /// Writes `name` into `d`: `dam.yaml` with `from` replaced by `to` (which must occur).
