@@ -624,8 +624,8 @@ fn export_fields(req: &cfrd::io::export::ExportRequest, out: Option<&std::path::
     Ok(())
 }
 
-/// `cfrd partition`: METIS on the scene's mesh (each construction band balanced, as `cfrd run`
-/// does), written to a partition file.
+/// `cfrd partition`: METIS on the scene's mesh (each construction band balanced and the
+/// evaluated elements evened out, as `cfrd run` does), written to a partition file.
 fn partition_ahead(scene: &std::path::Path, parts: usize, out: &std::path::Path) -> Result<String, String> {
     if parts == 0 {
         return Err("--parts must be at least 1".into());
@@ -636,18 +636,23 @@ fn partition_ahead(scene: &std::path::Path, parts: usize, out: &std::path::Path)
     let (band, n_bands) = cfrd::run::construction_bands(&s);
     let started = std::time::Instant::now();
     let part =
-        partition::partition_elements_by_band(&cells, n, parts, &band, n_bands).map_err(|e| e.to_string())?;
+        partition::partition_for_assembly(&cells, n, parts, &band, n_bands).map_err(|e| e.to_string())?;
     let seconds = started.elapsed().as_secs_f64();
     let p = partition::Partition::new(&cells, n, parts, part.clone());
+    let by_count =
+        partition::partition_elements_by_band(&cells, n, parts, &band, n_bands).map_err(|e| e.to_string())?;
+    let by_count = partition::Partition::new(&cells, n, parts, by_count);
     partition::PartitionFile::new(&cells, n, parts, part)
         .write(out)
         .map_err(|e| e.to_string())?;
     Ok(format!(
-        "{}: {} elements, {} nodes in {parts} parts ({seconds:.2} s)\n{}",
+        "{}: {} elements, {} nodes in {parts} parts ({seconds:.2} s)\n{}\n  elements evaluated per \
+         part with the partition balanced by owned elements alone: max {}",
         out.display(),
         cells.len(),
         n,
-        partition_statistics(&p, &cells)
+        partition_statistics(&p, &cells),
+        by_count.evaluated_cells(&cells).into_iter().max().unwrap_or(0)
     ))
 }
 
@@ -678,10 +683,14 @@ fn partition_statistics(p: &partition::Partition, cells: &partition::Cells) -> S
         .map(|(&o, &g)| g as f64 / o.max(1) as f64)
         .fold(0.0, f64::max);
     format!(
-        "{}{}{}  elements on part boundaries: {}; largest ghost / owned nodes of a part: {ratio:.3}",
+        "{}{}{}{}  elements on part boundaries: {}; largest ghost / owned nodes of a part: {ratio:.3}",
         line(
             "elements",
             spread((0..parts).map(|r| p.owned_cells(r).len()).collect())
+        ),
+        line(
+            "elements evaluated (own and neighbours' around owned nodes)",
+            spread(p.evaluated_cells(cells))
         ),
         line("owned nodes", spread(owned)),
         line("ghost nodes", spread(ghosts)),

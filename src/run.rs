@@ -13,7 +13,7 @@ use crate::scene::Scene;
 use crate::solver::discretization::Discretization;
 use crate::solver::{mesh_cells, LocalResults, Problem, SolveError, SolveReport, StepControl};
 use mpi::topology::{Communicator, SimpleCommunicator};
-use partition::{partition_elements_by_band, Partition, PartitionFile};
+use partition::{partition_for_assembly, Partition, PartitionFile};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -106,7 +106,7 @@ pub fn partition_scene(world: &SimpleCommunicator, scene: &Scene) -> Result<Part
             }
             None => {
                 let (band, n_bands) = construction_bands(scene);
-                partition_elements_by_band(&cells, n_nodes, nparts, &band, n_bands).map_err(|e| e.to_string())
+                partition_for_assembly(&cells, n_nodes, nparts, &band, n_bands).map_err(|e| e.to_string())
             }
         }
     } else {
@@ -123,7 +123,8 @@ const MAX_BANDS: usize = 8;
 /// The construction band of every element and the number of bands: the stages that place
 /// elements, in order, grouped into at most 8 consecutive bands of about equal
 /// numbers of stages. Elements never placed by a stage go with the first band. The partition
-/// balances each band over the ranks (`partition::partition_elements_by_band`).
+/// balances each band over the ranks and evens out the elements each rank evaluates
+/// (`partition::partition_for_assembly`).
 pub fn construction_bands(scene: &Scene) -> (Vec<u32>, usize) {
     let placing: Vec<&crate::scene::validate::Stage> =
         scene.stages.iter().filter(|s| !s.activate.is_empty()).collect();

@@ -80,7 +80,8 @@ fn one_two_and_three_ranks_agree() {
 }
 
 /// `cfrd partition`'s report: its element and owned-node totals are the mesh's, split over
-/// `parts` parts, and on more than one part some nodes are ghosts.
+/// `parts` parts, on more than one part some nodes are ghosts, and the evaluated elements are
+/// balanced at least as well as by the owned ones.
 fn check_partition_statistics(report: &str, parts: usize) {
     let word_before = |line: &str, w: &str| -> usize {
         let words: Vec<&str> = line
@@ -115,6 +116,19 @@ fn check_partition_statistics(report: &str, parts: usize) {
         "{report}"
     );
     assert!(total("ghost nodes per part") > 0, "{report}");
+    // the owner of a shared node evaluates the cells of other parts around it; the partition
+    // evens out the evaluated cells, so its busiest part is no busier than with the partition
+    // balanced by owned cells alone (the report's last line)
+    let evaluated = report
+        .lines()
+        .find(|l| l.trim_start().starts_with("elements evaluated"))
+        .unwrap();
+    assert!(
+        total("elements evaluated") > word_before(first, "elements"),
+        "{report}"
+    );
+    let by_owned: usize = report.split_whitespace().last().unwrap().parse().unwrap();
+    assert!(word_before(evaluated, "total") <= by_owned, "{report}");
 }
 
 #[test]
