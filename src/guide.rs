@@ -323,10 +323,11 @@
 //! The mesh is partitioned with METIS across the MPI ranks, each construction band balanced on
 //! its own so that every stage of a staged run keeps all ranks busy (`cfrd partition` does the
 //! same ahead of time). Every rank evaluates its own elements and those along its partition
-//! boundary and adds to its own rows only, so each entry of the residual and of the tangent is
-//! summed over the same elements in the same order at any rank count; every norm behind a
-//! Newton decision (convergence, the line search's merit, the Dirichlet scaling) is an exact,
-//! order-independent sum ([`crate::solver::exact_sum`]). With `canonical_lu` a run, cut-backs,
+//! boundary and adds to its own rows only (the partition evens out these evaluated elements,
+//! not only the owned ones; `cfrd partition` prints both), so each entry of the residual and
+//! of the tangent is summed over the same elements in the same order at any rank count; every
+//! norm behind a Newton decision (convergence, the line search's merit, the Dirichlet scaling)
+//! is an exact, order-independent sum ([`crate::solver::exact_sum`]). With `canonical_lu` a run, cut-backs,
 //! line searches and plastic states included, is therefore the same bit for bit on any number of
 //! ranks; with the iterative solver it agrees to the solver tolerance. Results go to one
 //! parallel HDF5 file whose layout does not depend on the rank count. A panic on any rank

@@ -130,6 +130,37 @@
 //!   here. It is not the seed scenes' default yet: its time saving is to be measured side by
 //!   side, and it forgets its rate at every step checkpoint (so that a restart repeats the
 //!   steps), which makes it idle under `--checkpoint step`.
+//! * **Line search of the static stages** (`solver.line_search`; issue 20). The quake's
+//!   `full_step_first` ("The seed quake (coarse mesh)") against the default `secant`, and each
+//!   with the extrapolating predictor, on the three coarse seed scenes: build of 7e6f952, 2
+//!   ranks, one run of each, one after the other alone on the machine (scene variants with the
+//!   keys added, `summary.json`; errors by `cfrd accuracy` against the `secant` run):
+//!
+//!   | scene | line search, predictor | wall time | Newton iterations | cut-backs | residual evaluations | assembly / solves | largest error σ_s / σ_a / deflection / crest |
+//!   |---|---|---|---|---|---|---|---|
+//!   | hyperbolic | secant | 44.2 s | 490 | 5 | 1,818 | 29.7 / 13.9 s | – |
+//!   | hyperbolic | full_step_first | 34.8 s | 627 | 9 | 967 | 17.5 / 16.8 s | 1.4e-4 / 5.4e-4 / 3.5e-5 / 3.6e-5 |
+//!   | hyperbolic | secant, extrapolate | 42.6 s | 400 | 5 | 1,548 | 29.0 / 13.1 s | 1.5e-4 / 2.9e-4 / 2.9e-5 / 1.3e-4 |
+//!   | hyperbolic | full_step_first, extrapolate | 31.7 s | 545 | 9 | 870 | 17.0 / 14.1 s | 1.6e-4 / 1.5e-4 / 3.4e-5 / 5.9e-5 |
+//!   | Mohr–Coulomb | secant | 42.1 s | 489 | 5 | 1,815 | 29.0 / 12.6 s | – |
+//!   | Mohr–Coulomb | full_step_first | 31.6 s | 618 | 9 | 948 | 15.9 / 15.2 s | 1.1e-4 / 6.5e-4 / 3.7e-5 / 1.3e-4 |
+//!   | Mohr–Coulomb | secant, extrapolate | 45.9 s | 400 | 5 | 1,548 | 30.7 / 14.6 s | 1.8e-4 / 2.7e-4 / 2.2e-5 / 2.8e-4 |
+//!   | Mohr–Coulomb | full_step_first, extrapolate | 36.1 s | 544 | 9 | 870 | 19.0 / 16.5 s | 2.7e-4 / 3.5e-4 / 4.6e-5 / 1.8e-4 |
+//!   | GP interface | secant | 52.9 s | 559 | 5 | 2,047 | 34.4 / 18.1 s | – |
+//!   | GP interface | full_step_first | 45.5 s | 710 | 10 | 1,105 | 21.0 / 24.0 s | 3.9e-3 / 7.7e-3 / 5.9e-5 / 2.2e-4 |
+//!   | GP interface | secant, extrapolate | 64.5 s | 472 | 9 | 1,872 | 42.3 / 21.5 s | 3.5e-3 / 6.0e-3 / 4.5e-5 / 2.5e-4 |
+//!   | GP interface | full_step_first, extrapolate | 46.7 s | 647 | 13 | 1,008 | 22.3 / 23.9 s | 1.8e-3 / 4.7e-3 / 9.5e-5 / 8.7e-5 |
+//!
+//!   The counts are exact: the secant line search evaluates the residual 3.7 times per Newton
+//!   iteration, `full_step_first` 1.5 times, which halves the assembly; but Newton needs 26–28 %
+//!   more iterations and cuts back 9–13 times instead of 5, so the linear solves grow and the
+//!   runs were 1.16–1.33 times faster, single runs on a machine where the same run spreads by
+//!   ±10 % ("Side by side: the coarse scene's 25 s"). Side by side on the GP-interface scene
+//!   (build of 692b961, three alternating pairs): `secant` 55.9, 65.2, 52.8 s, `full_step_first`
+//!   49.5, 50.0, 54.1 s; medians 55.9 and 50.0 s, 1.12 times, pairwise 0.98–1.30. The results move by less than 1e-2 of
+//!   their largest values, as with the predictor. `secant` stays the static default: the
+//!   gain is smaller than on the quake, the cut-backs double, and the hard cases (the fine
+//!   mesh's slab stage II, where the full Newton step failed) were not run with it.
 //! * **Load steps per stage.** Every Newton iteration integrates the GP points over the whole
 //!   step increment from the committed state (spec models §8.1); with one load step per stage an
 //!   update takes 35–70 substeps on average (small GP dam of `tests/cfrd_dam.rs`), and a step too
@@ -383,6 +414,50 @@
 //! build 27.34 s (25.76–28.17), the base 26.25 s (25.86–29.33), ratio of the medians 1.04,
 //! pairwise 0.96–1.06, results identical (`cfrd compare`: 0). No measurable change: the
 //! geometry is a few hundred flops per element against the GP integration and the LU.
+//!
+//! ## Side by side: the coarse scene's 25 s, a regression?
+//!
+//! Issue 20 asked whether the coarse seed scenes had become slower than the README's 23–25 s.
+//! They had not; the machine had. On 2026-11-26 the coarse hyperbolic scene on 2 ranks, the
+//! build of ecc4f9d (whose own run gave the README's 25 s, "The main job") with its scene
+//! against the build of 7e6f952 with today's scene (the incompatible-mode slab), one after
+//! the other in four rounds on the same machine (`total_seconds`): ecc4f9d 51.9, 42.9, 46.3,
+//! 47.9 s; 7e6f952 50.3, 45.0, 51.0, 45.6 s; 7e6f952 with the plain hexahedral slab 45.2,
+//! 48.0, 48.1 s. The medians of rounds 1–3 are 46.3 s and 45.6 s: no measurable difference
+//! between the builds, and the same runs spread by ±10 % from round to round. The same scene
+//! took half that time on the machine of the README's figure.
+//!
+//! ## Side by side: the partition balances the elements each rank evaluates
+//!
+//! A rank assembles the rows of the nodes it owns whole, so it evaluates its own elements and
+//! every element of another rank around them; the lowest rank owns the shared nodes, so with a
+//! partition balanced by owned elements rank 0 also evaluates rank 1's boundary elements. From
+//! commit 692b961 `cfrd run` partitions with [`partition::partition_for_assembly`]: METIS
+//! again with each part's target share lowered by the elements of other parts it evaluates,
+//! keeping the better of the partitions. `cfrd partition -n P` prints the evaluated elements
+//! per part for the partition it writes and, for comparison, the busiest part's for the
+//! partition balanced by owned elements:
+//!
+//! | mesh | P | busiest part, balanced by owned elements | busiest part now | mean |
+//! |---|---|---|---|---|
+//! | coarse (723 elements) | 2 | 438 | 390 | 390.0 |
+//! | coarse | 8 | 326 | 194 | 156.0 |
+//! | medium (9,414) | 2 | 5,213 | 5,026 | 4,916.5 |
+//! | medium | 8 | 2,056 | 1,832 | 1,527.2 |
+//! | fine (76,502) | 2 | 39,330 | 39,330 (the first partition kept) | 39,141.5 |
+//! | fine | 8 | 12,315 | 11,490 | 10,919.6 |
+//!
+//! METIS takes longer (it runs up to four times): 0.25 s instead of 0.06 s on the medium
+//! mesh, 2.1 s instead of 0.3 s on the fine mesh at 8 parts. The coarse GP-interface seed
+//! scene on 2 ranks, the build of 692b961 against that of 7e6f952, alternating, four pairs
+//! (the first a warm-up), alone on the machine: the element loops (`element_seconds_per_rank`)
+//! took 36.0 / 28.7, 35.4 / 28.3 and 35.8 / 28.1 s on ranks 0 / 1 before and 31.5 / 33.5,
+//! 32.2 / 31.3 and 34.7 / 34.4 s after; the assembly phase 36.5, 36.0, 36.3 s before and 34.8,
+//! 33.9, 37.1 s after (median 36.3 against 34.8 s, 4 % less); whole runs 58.3, 57.7, 59.0 s
+//! before and 58.1, 56.5, 61.1 s after, the same within the runs' spread. The results are the
+//! same bit for bit (`cfrd compare`: 0), as they are on any partition with the canonical LU.
+//! On 2 ranks the gain is small; on 8 ranks the busiest part evaluates fewer
+//! elements than before (7–40 %).
 //!
 //! ## Accuracy against cost
 //!
