@@ -293,7 +293,11 @@
 //!   counts and runs, to the factorization's rounding, not bit for bit: MUMPS's parallel
 //!   factorization sums in an order that depends on message timing. Its options take the
 //!   prefix `distributed_` (`-distributed_mat_mumps_icntl_14 50` for more working memory,
-//!   `-distributed_refactor_after 4`).
+//!   `-distributed_refactor_after 4`). `-distributed_pc_type asm -distributed_sub_pc_type lu`
+//!   factors each rank's overlapping subdomain instead of the whole matrix (additive Schwarz
+//!   under GMRES; the subdomain factors are reused the same way): no rank holds more than its
+//!   subdomain's factors, at the price of more GMRES iterations as the ranks grow
+//!   ([`crate::performance`], "Linear solvers on the seed dam").
 //!
 //! In a dynamic stage both direct solvers change their inner solver: the Jacobian of a time
 //! step is dominated by the mass term, and an incomplete LU of the current Jacobian (ILU(0),

@@ -245,13 +245,38 @@ fn comm_size(comm: mpi::ffi::MPI_Comm) -> Result<i32, PetscError> {
     Ok(size)
 }
 
-/// Whether `pc` is a complete LU factorization (`PCLU`), after the options.
+/// Whether `pc`, after the options, factors completely, so that its factors may serve later
+/// matrices: a complete LU (`PCLU`), or additive Schwarz whose subdomains are factored
+/// completely (`-<prefix>pc_type asm -<prefix>sub_pc_type lu`), each rank holding the factors
+/// of its overlapping subdomain only.
 fn is_complete_lu(pc: p::PC) -> Result<bool, PetscError> {
     let mut kind: p::PCType = std::ptr::null();
     call!(PCGetType(pc, &mut kind))?;
     // SAFETY: PETSc returns its own NUL-terminated type name.
-    let kind = unsafe { std::ffi::CStr::from_ptr(kind) };
-    Ok(kind.to_bytes_with_nul() == p::PCLU)
+    let kind = unsafe { std::ffi::CStr::from_ptr(kind) }.to_bytes_with_nul();
+    Ok(kind == p::PCLU || (kind == p::PCASM && subdomain_pc_type(pc)? == b"lu"))
+}
+
+/// The subdomain preconditioner `-<prefix>sub_pc_type` of a Schwarz `pc` as given in the
+/// options (empty when not given: PETSc's default, ILU(0)).
+fn subdomain_pc_type(pc: p::PC) -> Result<Vec<u8>, PetscError> {
+    let mut prefix: *const c_char = std::ptr::null();
+    call!(PCGetOptionsPrefix(pc, &mut prefix))?;
+    let name = CString::new("-sub_pc_type").expect("no NUL");
+    let mut value = [0 as c_char; 64];
+    let mut set = p::PETSC_FALSE;
+    call!(PetscOptionsGetString(
+        null_mut(),
+        prefix,
+        name.as_ptr(),
+        value.as_mut_ptr(),
+        value.len(),
+        &mut set
+    ))?;
+    // SAFETY: PETSc writes a NUL-terminated string into `value` (or leaves it zeroed).
+    Ok(unsafe { std::ffi::CStr::from_ptr(value.as_ptr()) }
+        .to_bytes()
+        .to_vec())
 }
 
 impl Drop for LaggedLu {
