@@ -199,8 +199,9 @@
 //! A time step takes the full Newton correction whenever it lowers the residual norm
 //! (`line_search: full_step_first`, the default), one residual evaluation per iteration; the
 //! static stages' `secant` line search (`solver.line_search`) evaluates three. On the coarse
-//! seed quake that made the quake 1.54 times faster, and the whole medium GP quake 1.39 times
-//! (61.7 min on 2 ranks), for residual slab stresses within 1 % of the secant run's
+//! seed quake that made the quake 1.54 times faster and a window of the medium quake 1.68
+//! times (side by side); the whole medium GP quake took 61.7 min on 2 ranks against 85.7 min
+//! in an earlier run. Residual slab stresses stay within 1 % of the secant run's
 //! ([`crate::performance`]).
 //!
 //! `hht_alpha` integrates with HHT-α (β = (1 − α)²/4, γ = 1/2 − α): second-order accurate like

@@ -820,8 +820,9 @@
 //! machine except for stops while builds, tests and the static side-by-side runs above used
 //! the cores, 3,432 s of stops in all): **3,701 s (61.7 min)** net of the stops (7,133 s
 //! wall), 1.85 s per step, 3.12 Newton iterations per step, 4 cut-backs, 496 / 272 MiB per
-//! rank, against 85.7 min in three parts with the secant line search: 1.39 times faster, and
-//! 3 % over the hour (the ideal elasto-plastic quake, 52.0 min, is under it). The
+//! rank, against 85.7 min in three parts with the secant line search (an earlier run on this
+//! machine, not side by side: 1.39 times, to be read with the ±10 % by which runs spread),
+//! and 3 % over the hour (the ideal elasto-plastic quake, 52.0 min, is under it). The
 //! 1.68 times of the window at 4.03–4.62 s does not hold over the whole quake: the gain
 //! shrinks where the shaking is strongest (9–13 s), where each step takes more Newton
 //! iterations. Per second of quake (`phase_seconds` are not given: the stops fell into
