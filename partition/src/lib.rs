@@ -168,10 +168,10 @@ fn kway_by_band(
 /// evaluates in an assembly rather than what it owns. The owner of a node assembles its rows
 /// whole, so it also evaluates the cells of other parts around it
 /// ([`Partition::evaluated_cells`]), and as the lowest part owns every shared node, the lower
-/// parts carry their neighbours' boundary cells on top of their own. METIS runs a second time
-/// with each part's target share lowered by the cells of other parts it evaluated in the first
-/// partition (target weights `tpwgts`); of the two partitions the one whose busiest part
-/// evaluates fewer cells is returned.
+/// parts carry their neighbours' boundary cells on top of their own. METIS runs again, up to
+/// three times, each with every part's target share lowered by the cells
+/// of other parts it evaluated in the partition before (target weights `tpwgts`); of all the
+/// partitions the first whose busiest part evaluates the fewest cells is returned.
 #[cfg(feature = "metis")]
 pub fn partition_for_assembly(
     cells: &Cells,
