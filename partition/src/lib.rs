@@ -184,18 +184,17 @@ pub fn partition_for_assembly(
     if nparts < 2 || cells.len() < 2 {
         return Ok(first);
     }
-    let busiest = |part: &[u32]| {
-        let p = Partition::new(cells, n_nodes, nparts, part.to_vec());
-        p.evaluated_cells(cells).into_iter().max().unwrap_or(0)
+    let load = |part: Vec<u32>| {
+        let evaluated = Partition::new(cells, n_nodes, nparts, part.clone()).evaluated_cells(cells);
+        (evaluated.iter().copied().max().unwrap_or(0), evaluated, part)
     };
-    let mut best = (busiest(&first), first);
-    let mut last = best.1.clone();
+    let mut last = load(first);
+    let mut best = (last.0, last.2.clone());
     for _ in 0..ASSEMBLY_BALANCE_ROUNDS {
-        let shares = assembly_shares(&Partition::new(cells, n_nodes, nparts, last), cells);
-        last = kway_by_band(cells, nparts, band, n_bands, Some(&shares))?;
-        let b = busiest(&last);
-        if b < best.0 {
-            best = (b, last.clone());
+        let shares = assembly_shares(&last.1, &last.2, cells.len());
+        last = load(kway_by_band(cells, nparts, band, n_bands, Some(&shares))?);
+        if last.0 < best.0 {
+            best = (last.0, last.2.clone());
         }
     }
     Ok(best.1)
@@ -206,25 +205,25 @@ pub fn partition_for_assembly(
 #[cfg(feature = "metis")]
 const ASSEMBLY_BALANCE_ROUNDS: usize = 3;
 
-/// Target share of the cells for every part such that owned plus evaluated foreign cells
-/// ([`Partition::evaluated_cells`]) come out equal if the foreign cells stay as they are in
-/// `p`, but at least half an equal share (on meshes too small for the part count the foreign
-/// cells outnumber the owned ones, and a part must not be left empty). The shares add up to 1 in the precision METIS checks (the last one takes the rest).
+/// Target share of the `n_cells` cells for every part such that owned plus evaluated foreign
+/// cells come out equal if the foreign cells stay as they are in the partition `part`, whose
+/// parts evaluate `evaluated` cells ([`Partition::evaluated_cells`]); but at least half an
+/// equal share (on meshes too small for the part count the foreign cells outnumber the owned
+/// ones, and a part must not be left empty). The shares add up to 1 in the precision METIS
+/// checks (the last one takes the rest).
 #[cfg(feature = "metis")]
-fn assembly_shares(p: &Partition, cells: &Cells) -> Vec<metis::Real> {
-    let owned: Vec<usize> = (0..p.nparts).map(|r| p.owned_cells(r).len()).collect();
-    let foreign: Vec<f64> = p
-        .evaluated_cells(cells)
-        .iter()
-        .zip(&owned)
-        .map(|(&e, &o)| (e - o) as f64)
-        .collect();
-    let equal = cells.len() as f64 / p.nparts as f64;
-    let level = equal + foreign.iter().sum::<f64>() / p.nparts as f64;
+fn assembly_shares(evaluated: &[usize], part: &[u32], n_cells: usize) -> Vec<metis::Real> {
+    let nparts = evaluated.len();
+    let mut foreign: Vec<f64> = evaluated.iter().map(|&e| e as f64).collect();
+    for &p in part {
+        foreign[p as usize] -= 1.0;
+    }
+    let equal = n_cells as f64 / nparts as f64;
+    let level = equal + foreign.iter().sum::<f64>() / nparts as f64;
     let wanted: Vec<f64> = foreign.iter().map(|&f| (level - f).max(0.5 * equal)).collect();
     let total: f64 = wanted.iter().sum();
     let mut shares: Vec<metis::Real> = wanted.iter().map(|&w| (w / total) as metis::Real).collect();
-    let last = shares.len() - 1;
+    let last = nparts - 1;
     shares[last] = 1.0 - shares[..last].iter().sum::<metis::Real>();
     shares
 }
