@@ -632,6 +632,13 @@ fn partition_ahead(scene: &std::path::Path, parts: usize, out: &std::path::Path)
     }
     let s = cfrd::scene::Scene::load(scene).map_err(|e| e.to_string())?;
     let cells = cfrd::solver::mesh_cells(&s.mesh);
+    if parts > cells.len() {
+        return Err(format!(
+            "--parts {parts}: more parts than the {} elements of {}'s mesh",
+            cells.len(),
+            scene.display()
+        ));
+    }
     let n = s.mesh.num_nodes();
     let (band, n_bands) = cfrd::run::construction_bands(&s);
     let started = std::time::Instant::now();

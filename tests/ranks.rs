@@ -164,6 +164,21 @@ fn partition_ahead_of_time_gives_the_same_results() {
     let c = cfrd_mpi(3, dir.path(), &["run", "pre.yaml", "-o", "c", "-q"]);
     assert_eq!(c.status.code(), Some(2), "{}", text(&c));
     assert!(text(&c).contains("made for 2 ranks"), "{}", text(&c));
+    // more parts than elements (a count METIS would overflow on) is refused with exit code 2
+    let p = cfrd(
+        dir.path(),
+        &[
+            "partition",
+            "scene.yaml",
+            "-n",
+            "100000000000",
+            "-o",
+            "huge.part.json",
+        ],
+    );
+    assert_eq!(p.status.code(), Some(2), "{}", text(&p));
+    assert!(text(&p).contains("--parts 100000000000"), "{}", text(&p));
+    assert!(!dir.path().join("huge.part.json").exists());
 }
 
 #[test]
