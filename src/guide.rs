@@ -200,9 +200,9 @@
 //! (`line_search: full_step_first`, the default), one residual evaluation per iteration; the
 //! static stages' `secant` line search (`solver.line_search`) evaluates three. On the coarse
 //! seed quake that made the quake 1.54 times faster and a window of the medium quake 1.68
-//! times (side by side); the whole medium GP quake took 61.7 min on 2 ranks against 85.7 min
-//! in an earlier run. Residual slab stresses stay within 1 % of the secant run's
-//! ([`crate::performance`]).
+//! times (side by side); the whole medium GP quake took 52.7 min on 2 ranks alone on the
+//! machine, against 85.7 min with the secant line search in an earlier run. Residual slab
+//! stresses stay within 1 % of the secant run's ([`crate::performance`]).
 //!
 //! `hht_alpha` integrates with HHT-α (β = (1 − α)²/4, γ = 1/2 − α): second-order accurate like
 //! average acceleration, but modes the time step does not resolve are damped, down to a

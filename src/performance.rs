@@ -815,51 +815,66 @@
 //! | 18–19 s | 1.13 | 2.05 |
 //! | 19–20 s | 1.08 | 2.00 |
 //!
-//! **The GP medium quake in one part** (build of 7e6f952, the same command with
-//! `seed_medium_gp_interface_quake.yaml`, from its post-impoundment checkpoint, alone on the
-//! machine except for stops while builds, tests and the static side-by-side runs above used
-//! the cores, 3,432 s of stops in all): **3,701 s (61.7 min)** net of the stops (7,133 s
-//! wall), 1.85 s per step, 3.12 Newton iterations per step, 4 cut-backs, 496 / 272 MiB per
-//! rank, against 85.7 min in three parts with the secant line search (an earlier run on this
-//! machine, not side by side: 1.39 times, to be read with the ±10 % by which runs spread),
-//! and 3 % over the hour (the ideal elasto-plastic quake, 52.0 min, is under it). The
-//! 1.68 times of the window at 4.03–4.62 s does not hold over the whole quake: the gain
-//! shrinks where the shaking is strongest (9–13 s), where each step takes more Newton
-//! iterations. Per second of quake (`phase_seconds` are not given: the stops fell into
-//! them):
+//! **The GP medium quake in one part, alone on the machine** (build of 56a695f; the same
+//! command with `seed_medium_gp_interface_quake.yaml`, from its post-impoundment checkpoint;
+//! nothing else ran and the run was never stopped): **3,164 s (52.7 min)** wall time
+//! (`/usr/bin/time -v`), 1.58 s per step, 3.14 Newton iterations per step, 4 cut-backs,
+//! 487 / 286 MiB per rank; assembly 1,846 s and linear solves 1,274 s (`phase_seconds`), the
+//! element loops 1,673 s on rank 0 and 1,753 s on rank 1. Under the hour, as the ideal
+//! elasto-plastic quake (52.0 min), and 1.63 times faster than the 85.7 min with the secant
+//! line search in three parts above (an earlier run, not side by side), close to the 1.68
+//! times of the side-by-side window at 4.03–4.62 s.
 //!
-//! | quake time | s per step, secant (three parts, table above) | s per step, `full_step_first` | Newton per step, `full_step_first` |
-//! |---|---|---|---|
-//! | 0–1 s | 1.19 | 0.73 | 1.59 |
-//! | 1–2 s | 2.09 | 1.35 | 2.26 |
-//! | 2–3 s | 2.37 | 1.58 | 2.60 |
-//! | 3–4 s | 3.21 | 2.07 | 3.28 |
-//! | 4–5 s | 3.02 | 2.19 | 3.69 |
-//! | 5–6 s | 2.78 | 2.17 | 3.32 |
-//! | 6–7 s | 2.78 | 1.96 | 3.36 |
-//! | 7–8 s | 2.78 | 1.97 | 3.60 |
-//! | 8–9 s | 2.57 | 1.79 | 3.30 |
-//! | 9–10 s | 3.59 | 2.57 | 4.01 |
-//! | 10–11 s | 3.72 | 2.43 | 4.05 |
-//! | 11–12 s | 3.60 | 2.75 | 4.42 |
-//! | 12–13 s | 3.29 | 2.91 | 4.27 |
-//! | 13–14 s | 2.76 | 1.95 | 3.33 |
-//! | 14–15 s | 2.54 | 1.84 | 3.27 |
-//! | 15–16 s | 2.13 | 1.44 | 2.85 |
-//! | 16–17 s | 2.00 | 1.59 | 2.78 |
-//! | 17–18 s | 1.77 | 1.37 | 2.22 |
-//! | 18–19 s | 1.61 | 1.18 | 2.09 |
-//! | 19–20 s | 1.50 | 1.15 | 2.01 |
+//! An earlier run of build 7e6f952 took 3,701 s (61.7 min) net of 3,432 s of stops
+//! (`kill -STOP`) while builds, tests and the static side-by-side runs used the cores
+//! (7,133 s wall; 3.12 Newton iterations per step, 4 cut-backs, 496 / 272 MiB per rank). The
+//! two builds differ in the partition (balanced by the elements each rank evaluates from commit
+//! 692b961), but that is not where the 9 minutes went: side by side, 60 time steps each from the
+//! step checkpoint at t = 4.02 s (`--linear-solver distributed_lu`, alternating 7e6f952,
+//! 56a695f, 56a695f, 7e6f952, alone on the machine) took 121 and 127 s with 7e6f952 and 122
+//! and 122 s with 56a695f. Per second of quake the stopped run's net time was 0.95–1.39 times
+//! the unstopped run's; a run's time net of stops overstates what it costs alone. Per second
+//! of quake:
 //!
-//! What the quake leaves differs from the secant run by 3.6e-3 (σ_s), 1.7e-3 (σ_a), 7.2e-4
-//! (deflection) and 1.5e-3 (crest settlement) of the largest values (`cfrd accuracy --quake`),
-//! as on the coarse mesh; the crest's residual displacement is 0.110 / −0.006 / −0.187 m in
+//! | quake time | s per step, secant (three parts, table above) | s per step, `full_step_first`, stopped run | s per step, `full_step_first`, alone | Newton per step, alone |
+//! |---|---|---|---|---|
+//! | 0–1 s | 1.19 | 0.73 | 0.73 | 1.59 |
+//! | 1–2 s | 2.09 | 1.35 | 0.97 | 2.26 |
+//! | 2–3 s | 2.37 | 1.58 | 1.28 | 2.59 |
+//! | 3–4 s | 3.21 | 2.07 | 1.68 | 3.25 |
+//! | 4–5 s | 3.02 | 2.19 | 1.80 | 3.51 |
+//! | 5–6 s | 2.78 | 2.17 | 1.72 | 3.34 |
+//! | 6–7 s | 2.78 | 1.96 | 1.59 | 3.30 |
+//! | 7–8 s | 2.78 | 1.97 | 1.90 | 3.70 |
+//! | 8–9 s | 2.57 | 1.79 | 1.88 | 3.42 |
+//! | 9–10 s | 3.59 | 2.57 | 2.15 | 4.33 |
+//! | 10–11 s | 3.72 | 2.43 | 2.03 | 4.12 |
+//! | 11–12 s | 3.60 | 2.75 | 2.18 | 4.38 |
+//! | 12–13 s | 3.29 | 2.91 | 2.30 | 4.33 |
+//! | 13–14 s | 2.76 | 1.95 | 1.70 | 3.45 |
+//! | 14–15 s | 2.54 | 1.84 | 1.62 | 3.19 |
+//! | 15–16 s | 2.13 | 1.44 | 1.42 | 2.88 |
+//! | 16–17 s | 2.00 | 1.59 | 1.35 | 2.79 |
+//! | 17–18 s | 1.77 | 1.37 | 1.26 | 2.30 |
+//! | 18–19 s | 1.61 | 1.18 | 1.05 | 2.07 |
+//! | 19–20 s | 1.50 | 1.15 | 1.01 | 2.01 |
+//!
+//! The cost per step follows the Newton iterations, which follow the shaking: at 9–13 s, where
+//! it is strongest, a step takes 4.1–4.4 iterations and more than twice the time of one in
+//! the first second.
+//!
+//! What the stopped run's quake leaves differs from the secant run by 3.6e-3 (σ_s), 1.7e-3
+//! (σ_a), 7.2e-4 (deflection) and 1.5e-3 (crest settlement) of the largest values (`cfrd
+//! accuracy --quake`), as on the coarse mesh; the crest's residual displacement is 0.110 / −0.006 / −0.187 m in
 //! both; I-D opens for a few steps at 9.34–9.40 s (at most 4.0 mm, 3.7 mm in the secant run)
 //! and at 12.06 s. The single-step spikes of the crest acceleration
 //! ([`crate::verification`]) are there too, larger (245 / 6.8 / 330 m/s² against 172 / 6.3 /
-//! 236): they are a step's numerical jolt, not the dam's response. This build's partition
-//! still gave rank 0 the boundary elements of rank 1 to evaluate as well; the partition
-//! balanced by evaluated elements (commit 692b961) has not been measured on this quake.
+//! 236): they are a step's numerical jolt, not the dam's response. The unstopped run of
+//! 56a695f differs from the stopped one of 7e6f952 by 2.3e-3 (σ_s), 2.3e-3 (σ_a), 3.9e-4
+//! (deflection) and 1.2e-3 (crest settlement), the rounding of the distributed solver on
+//! another partition carried along the path; its crest residual displacement is 0.110 /
+//! −0.006 / −0.187 m, I-D opens at 9.34 s (at most 3.9 mm) and last at 12.07 s, and its
+//! crest spikes are 219 / 6.6 / 295 m/s².
 //!
 //! **The distributed solver in the quake**, side by side: from part 2's step checkpoint at
 //! t = 4.02 s, 40 time steps each, one run after the other alone on the machine (build
