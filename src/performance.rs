@@ -276,9 +276,25 @@
 //!
 //!   On this mesh the factorizations are cheap and the three are within the runs' spread;
 //!   the 5.6e-2 in σ_s is a GP-interface point on the other side of its loading/unloading
-//!   switch, as in "Distributed LU" above. Where it should pay, the medium and fine meshes
-//!   (a subdomain's factors cost a fraction of the whole block's, and no rank holds the whole),
-//!   it has not been measured yet.
+//!   switch, as in "Distributed LU" above. Where it should pay, on the medium mesh, it does
+//!   not: the medium GP-interface scene's stages 1–17 (to fill_017, before slab stage I), 2
+//!   ranks, build of 56a695f, one run after the other alone on the machine
+//!   (`/usr/bin/time mpirun -n 2 cfrd run inputs/scenes/seed_medium_gp_interface_quake.yaml
+//!   --stop-after-stage 17`, the second with the options above and
+//!   `-distributed_refactor_after 20`):
+//!
+//!   | solver | wall time | assembly / linear solves | Newton iterations | cut-backs | factorizations | GMRES iterations | peak memory per rank |
+//!   |---|---|---|---|---|---|---|---|
+//!   | canonical LU (MUMPS, every rank factors the whole coupled block) | 239.9 s | 160.3 / 75.9 s | 656 | 0 | 114 | 4,250 | 290 / 292 MiB |
+//!   | Schwarz, subdomain MUMPS factors reused, refactored after 20 | 458.2 s | 171.8 / 282.9 s | 659 | 1 | 34 | 9,996 | 332 / 341 MiB |
+//!
+//!   The Schwarz preconditioner is 1.91 times slower over the run and 3.7 times in the linear
+//!   solves: 15 GMRES iterations per Newton iteration against 6.5 outweigh the 80 fewer
+//!   factorizations. Its peak memory per rank is higher, not lower (whether the overlap or
+//!   MUMPS's working memory makes it so was not looked into). The fields at fill_017 differ by up to 2.7e-2 of their
+//!   largest values (`cfrd compare`; strain 1.7e-2, stress 1.2e-2), the GP path after the
+//!   Schwarz run's one cut-back. So it is no default for the seed scenes; whether it pays on
+//!   the fine mesh, where the whole block's factors take 10 GiB, was not run.
 //! * **Parallel efficiency on the medium mesh** (issue 20, acceptance 2; the same build and
 //!   scene as the table above, canonical LU, `/usr/bin/time -v mpirun -n 1 cfrd run …` alone
 //!   on the machine right after the 2-rank runs; `phase_seconds` of `summary.json`):
