@@ -169,9 +169,9 @@ fn kway_by_band(
 /// whole, so it also evaluates the cells of other parts around it
 /// ([`Partition::evaluated_cells`]), and as the lowest part owns every shared node, the lower
 /// parts carry their neighbours' boundary cells on top of their own. METIS runs again, up to
-/// three times, each with every part's target share lowered by the cells
-/// of other parts it evaluated in the partition before (target weights `tpwgts`); of all the
-/// partitions the first whose busiest part evaluates the fewest cells is returned.
+/// three times, each with every part's target share lowered by the cells of other parts it
+/// evaluated in the partition before (target weights `tpwgts`); of all the partitions the
+/// first whose busiest part evaluates the fewest cells is returned.
 #[cfg(feature = "metis")]
 pub fn partition_for_assembly(
     cells: &Cells,
