@@ -632,18 +632,11 @@ fn partition_ahead(scene: &std::path::Path, parts: usize, out: &std::path::Path)
     }
     let s = cfrd::scene::Scene::load(scene).map_err(|e| e.to_string())?;
     let cells = cfrd::solver::mesh_cells(&s.mesh);
-    if parts > cells.len() {
-        return Err(format!(
-            "--parts {parts}: more parts than the {} elements of {}'s mesh",
-            cells.len(),
-            scene.display()
-        ));
-    }
     let n = s.mesh.num_nodes();
     let (band, n_bands) = cfrd::run::construction_bands(&s);
     let started = std::time::Instant::now();
-    let part =
-        partition::partition_for_assembly(&cells, n, parts, &band, n_bands).map_err(|e| e.to_string())?;
+    let part = partition::partition_for_assembly(&cells, n, parts, &band, n_bands)
+        .map_err(|e| format!("{}: {e}", scene.display()))?;
     let seconds = started.elapsed().as_secs_f64();
     let p = partition::Partition::new(&cells, n, parts, part.clone());
     let by_count =

@@ -106,7 +106,8 @@ pub fn partition_scene(world: &SimpleCommunicator, scene: &Scene) -> Result<Part
             }
             None => {
                 let (band, n_bands) = construction_bands(scene);
-                partition_for_assembly(&cells, n_nodes, nparts, &band, n_bands).map_err(|e| e.to_string())
+                partition_for_assembly(&cells, n_nodes, nparts, &band, n_bands)
+                    .map_err(|e| format!("{}: {e}", scene.source))
             }
         }
     } else {

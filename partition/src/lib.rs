@@ -42,6 +42,14 @@ pub enum PartitionError {
         /// Underlying error.
         source: std::io::Error,
     },
+    /// More parts (ranks) than cells: a part would own no cell.
+    #[error("{parts} parts for a mesh of {cells} elements: at most one part (MPI rank) per element")]
+    TooManyParts {
+        /// Parts asked for.
+        parts: usize,
+        /// Cells of the mesh.
+        cells: usize,
+    },
     /// The partition file is not valid JSON of the expected format.
     #[error("partition file {path}: {reason}")]
     Format {
@@ -239,6 +247,12 @@ fn kway(
     vwgt: Option<&[metis::Idx]>,
     tpwgts: Option<&[metis::Real]>,
 ) -> Result<Vec<u32>, PartitionError> {
+    if nparts > 1 && nparts > cells.len() {
+        return Err(PartitionError::TooManyParts {
+            parts: nparts,
+            cells: cells.len(),
+        });
+    }
     if nparts <= 1 || cells.len() <= 1 {
         return Ok(vec![0; cells.len()]);
     }
@@ -590,6 +604,20 @@ mod tests {
         let (cells, nn) = Cells::hex_row(2);
         let p = Partition::new(&cells, nn, 2, vec![0, 1]);
         assert_eq!(p.evaluated_cells(&cells), vec![2, 1]);
+    }
+
+    #[test]
+    #[cfg(feature = "metis")]
+    fn more_parts_than_cells_are_refused_by_every_partitioner() {
+        let (cells, nn) = Cells::hex_row(2);
+        let band = vec![0, 1];
+        let refused = |r: Result<Vec<u32>, PartitionError>| {
+            matches!(r, Err(PartitionError::TooManyParts { parts: 3, cells: 2 }))
+        };
+        assert!(refused(partition_elements(&cells, nn, 3)));
+        assert!(refused(partition_elements_by_band(&cells, nn, 3, &band, 2)));
+        assert!(refused(partition_for_assembly(&cells, nn, 3, &band, 2)));
+        assert_eq!(partition_for_assembly(&cells, nn, 2, &band, 2).unwrap().len(), 2);
     }
 
     #[test]
