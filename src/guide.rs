@@ -73,7 +73,7 @@
 //! | `boundary` | `{ set, fix: [x, y, z], value }` on node sets (prescribed displacement, zero by default) |
 //! | `loads` | `gravity: { g }`, `pressure: [ { faces, value } ]`, `hydrostatic: [ { faces, level, unit_weight } ]` (γ_w 9810 N/m³ by default) |
 //! | `stages` | construction and loading stages in order: `{ name, activate: [blocks], loads, load_steps }`, plus `dynamic` ([dynamic stages](#dynamic-stages-and-earthquakes)) and `modal` ([modal analysis](#modal-analysis)); placed blocks start strain-free at zero stress. Without stages the scene is one stage (a `mesh.cfrd` scene runs the generator's schedule) |
-//! | `solver` | [`SolverSpec`](crate::scene::schema::SolverSpec): `rtol` (1e-10), `max_iterations` (2000), `newton_tol` (1e-8), `newton_max_iterations` (25), `load_steps` (1), `max_cutbacks` (8), `petsc_options`, `monitor`, `linear_solver` (`iterative`, `canonical_lu` or `distributed_lu`), `reuse_factorization` (true), `integration_tol_ratio` (0, off), `predictor` (`none`, or `extrapolate`: a static load step starts from the last step's rate du/dλ, [`crate::solver::integrator::QuasiStatic`]), `line_search` (`secant`, or `full_step_first`, [`LineSearch`](crate::scene::schema::LineSearch)) |
+//! | `solver` | [`SolverSpec`](crate::scene::schema::SolverSpec): `rtol` (1e-10), `max_iterations` (2000), `newton_tol` (1e-8), `newton_max_iterations` (25), `load_steps` (1), `max_cutbacks` (8), `petsc_options`, `monitor`, `linear_solver` (`iterative`, `canonical_lu` or `distributed_lu`), `reuse_factorization` (true), `integration_tol_ratio` (0, off), `predictor` (`none`, or `extrapolate`: a static load step starts from the last step's rate du/dλ, [`crate::solver::integrator::QuasiStatic`]), `line_search` (`residual_secant`, `secant` or `full_step_first`, [`LineSearch`](crate::scene::schema::LineSearch)) |
 //! | `output` | [`OutputSpec`](crate::scene::schema::OutputSpec): `dir` (`out`; `-o` overrides it), `placed_nodes` (`end_of_stage` or `start_of_stage`: where the displacement of a placed node counts from), `profiles` (the seed's Figs. 7–11, [`crate::profiles`], and after an earthquake Figs. 12–20, [`crate::quake_figures`]; `probes` name the elements followed), `checkpoint` (`stage`, `step` or `none`) |
 //!
 //! ### A seed scene
@@ -197,12 +197,16 @@
 //! assemble ([`crate::performance`], "The seed quake (coarse mesh)").
 //!
 //! A time step takes the full Newton correction whenever it lowers the residual norm
-//! (`line_search: full_step_first`, the default), one residual evaluation per iteration; the
-//! static stages' `secant` line search (`solver.line_search`) evaluates three. On the coarse
+//! (`line_search: full_step_first`, the default), one residual evaluation per iteration;
+//! PETSc's secant line search (`secant`) evaluates three. On the coarse
 //! seed quake that made the quake 1.54 times faster and a window of the medium quake 1.68
 //! times (side by side); the whole medium GP quake took 52.7 min on 2 ranks alone on the
 //! machine, against 85.7 min with the secant line search in an earlier run. Residual slab
-//! stresses stay within 1 % of the secant run's ([`crate::performance`]).
+//! stresses stay within 1 % of the secant run's ([`crate::performance`]). The static stages'
+//! default, `solver.line_search: residual_secant`, takes the full step where it lowers the
+//! residual and the secant of the residual vectors puts the minimum near it (one evaluation),
+//! extends a correction that falls short along that secant (two), and takes the `secant`
+//! step otherwise (three).
 //!
 //! `hht_alpha` integrates with HHT-α (β = (1 − α)²/4, γ = 1/2 − α): second-order accurate like
 //! average acceleration, but modes the time step does not resolve are damped, down to a

@@ -18,7 +18,7 @@
 
 mod common;
 
-use common::{assert_bitwise_equal, cfrd_mpi, read_f64, small_dam, tempdir, text};
+use common::{assert_bitwise_equal, cfrd_mpi, read_f64, small_dam, summary_count, tempdir, text};
 use std::f64::consts::PI;
 use std::path::Path;
 
@@ -829,12 +829,4 @@ fn run_before_quake(d: &Path, out: &str) {
     ];
     let o = cfrd_mpi(2, d, &args);
     assert!(o.status.success(), "{}", text(&o));
-}
-
-fn summary_count(out: &Path, key: &str) -> u64 {
-    let text = std::fs::read_to_string(out.join("summary.json")).unwrap();
-    let s: serde_json::Value = serde_json::from_str(&text).unwrap();
-    s[key]
-        .as_u64()
-        .unwrap_or_else(|| panic!("summary.json has {key}"))
 }

@@ -690,6 +690,9 @@ pub trait SnesProblem {
     /// rest on the problem's own (rank-count-independent) norm rather than on `VecNorm`, whose
     /// partial sums depend on the partition.
     fn objective(&mut self, x: &Vector) -> Result<Option<f64>, PetscError>;
+    /// The dot product aᵀb of two vectors laid out like x, independent of the rank count
+    /// (the residual secant line search's decisions rest on it).
+    fn dot(&mut self, a: &Vector, b: &Vector) -> Result<f64, PetscError>;
 }
 
 /// How a SNES solve ended.
@@ -738,6 +741,10 @@ pub enum LineSearch {
     /// The full step when it lowers ‖F‖² (one residual evaluation); otherwise the minimum
     /// of the parabola through λ = 0, ½, 1 (two more), halving while F cannot be evaluated.
     FullStepFirst,
+    /// The full step, or a longer one, from the secant through F(x) and F(x − δ)
+    /// ([`residual_secant_step`]) when the full step lowers ‖F‖²: one or two residual
+    /// evaluations; otherwise `Secant`'s step (three).
+    ResidualSecant,
 }
 
 /// The linear solver of the Newton corrections (the scene's `solver.linear_solver`).
@@ -859,7 +866,7 @@ impl Snes {
         call!(SNESGetLineSearch(s.raw, &mut ls))?;
         let kind = match s.line_search {
             LineSearch::Secant => p::SNESLINESEARCHL2.as_ptr(),
-            LineSearch::FullStepFirst => p::SNESLINESEARCHSHELL.as_ptr(),
+            LineSearch::FullStepFirst | LineSearch::ResidualSecant => p::SNESLINESEARCHSHELL.as_ptr(),
         };
         call!(SNESLineSearchSetType(ls, kind as *const c_char))?;
         let mut ksp: p::KSP = null_mut();
@@ -909,11 +916,11 @@ impl Snes {
         let mut ls: p::SNESLineSearch = null_mut();
         call!(SNESGetLineSearch(self.raw, &mut ls))?;
         // a no-op unless the line search is the shell (options may have chosen another)
-        call!(SNESLineSearchShellSetUserFunc(
-            ls,
-            Some(full_step_first::<P>),
-            ctx
-        ))?;
+        let shell = match self.line_search {
+            LineSearch::ResidualSecant => residual_secant::<P>,
+            _ => full_step_first::<P>,
+        };
+        call!(SNESLineSearchShellSetUserFunc(ls, Some(shell), ctx))?;
         call!(SNESSolve(self.raw, null_mut(), x.raw))?;
         let (mut reason, mut its) = (0, 0);
         call!(SNESGetConvergedReason(self.raw, &mut reason))?;
@@ -971,40 +978,71 @@ unsafe extern "C" fn full_step_first<P: SnesProblem>(
     ctx: *mut std::ffi::c_void,
 ) -> p::PetscErrorCode {
     // SAFETY: as in snes_residual: ctx is the `&mut P` of the running SNESSolve.
+    unsafe { full_step_shell::<P>(ls, ctx, false) }
+}
+
+/// [`LineSearch::ResidualSecant`] as PETSc's shell line search.
+unsafe extern "C" fn residual_secant<P: SnesProblem>(
+    ls: p::SNESLineSearch,
+    ctx: *mut std::ffi::c_void,
+) -> p::PetscErrorCode {
+    // SAFETY: as in snes_residual: ctx is the `&mut P` of the running SNESSolve.
+    unsafe { full_step_shell::<P>(ls, ctx, true) }
+}
+
+/// The shell line searches; `secant`: [`LineSearch::ResidualSecant`], else
+/// [`LineSearch::FullStepFirst`].
+///
+/// # Safety
+/// `ctx` is the `&mut P` of the running SNESSolve.
+unsafe fn full_step_shell<P: SnesProblem>(
+    ls: p::SNESLineSearch,
+    ctx: *mut std::ffi::c_void,
+    secant: bool,
+) -> p::PetscErrorCode {
+    // SAFETY: the caller's contract
     let problem = unsafe { &mut *(ctx as *mut P) };
-    match full_step_first_apply(ls, problem) {
+    match full_step_first_apply(ls, problem, secant) {
         Ok(()) => 0,
         Err(e) => e.code.max(CALLBACK_FAILED),
     }
 }
 
-/// The body of [`full_step_first`].
-fn full_step_first_apply<P: SnesProblem>(ls: p::SNESLineSearch, problem: &mut P) -> Result<(), PetscError> {
+/// The body of the shell line searches: X ← X − λ·Y with F(X) in F. Without `secant`
+/// ([`LineSearch::FullStepFirst`]): λ = 1 when the full step lowers ‖F‖², else
+/// [`fallback_step`]'s with the parabola's vertex kept in [0.1, 1]. With `secant`
+/// ([`LineSearch::ResidualSecant`]): [`secant_choice`]'s λ, else the vertex as PETSc's `l2`
+/// takes it.
+fn full_step_first_apply<P: SnesProblem>(
+    ls: p::SNESLineSearch,
+    problem: &mut P,
+    secant: bool,
+) -> Result<(), PetscError> {
     let (mut x, mut f, mut y, mut w, mut g) = (null_mut(), null_mut(), null_mut(), null_mut(), null_mut());
     call!(SNESLineSearchGetVecs(ls, &mut x, &mut f, &mut y, &mut w, &mut g))?;
-    let (x, mut f, y, mut w) = (borrowed(x), borrowed(f), borrowed(y), borrowed(w));
+    let (x, mut f, y, mut w, mut g) = (borrowed(x), borrowed(f), borrowed(y), borrowed(w), borrowed(g));
     let f0 = problem.objective(&x)?.unwrap_or(f64::INFINITY);
-    let mut merit = |lambda: f64, w: &mut Vector| -> Result<f64, PetscError> {
-        call!(VecWAXPY(w.raw, -lambda, y.raw, x.raw))?;
-        Ok(problem.objective(w)?.unwrap_or(f64::INFINITY))
-    };
-    let g1 = merit(1.0, &mut w)?;
-    let lambda = if g1 < f0 {
-        1.0
+    let g1 = merit(problem, &x, &y, &mut w, 1.0)?;
+    let chosen = if secant && g1 < f0 {
+        secant_choice(problem, [&x, &y, &f], &mut w, &mut g, g1)?
     } else {
-        match fallback_step(f0, g1, &mut |l| merit(l, &mut w))? {
-            Some(l) => l,
-            None => {
-                call!(SNESLineSearchSetReason(ls, p::SNES_LINESEARCH_FAILED_DOMAIN))?;
-                return Ok(());
-            }
+        None
+    };
+    let lambda = match chosen {
+        Some(l) => Some(l),
+        None if g1 < f0 && !secant => Some(1.0),
+        None => {
+            let vertex = if secant { l2_vertex } else { clamped_vertex };
+            fallback_step(f0, g1, vertex, &mut |l| merit(problem, &x, &y, &mut w, l))?
         }
+    };
+    let Some(lambda) = lambda else {
+        return call!(SNESLineSearchSetReason(ls, p::SNES_LINESEARCH_FAILED_DOMAIN));
     };
     call!(VecWAXPY(w.raw, -lambda, y.raw, x.raw))?;
     // F at the chosen point: known from its merit evaluation unless λ is new
     if !problem.residual(&w, &mut f)? {
-        call!(SNESLineSearchSetReason(ls, p::SNES_LINESEARCH_FAILED_DOMAIN))?;
-        return Ok(());
+        return call!(SNESLineSearchSetReason(ls, p::SNES_LINESEARCH_FAILED_DOMAIN));
     }
     call!(VecCopy(w.raw, x.raw))?;
     let (mut xnorm, mut fnorm, mut ynorm) = (0.0, 0.0, 0.0);
@@ -1015,26 +1053,118 @@ fn full_step_first_apply<P: SnesProblem>(ls: p::SNESLineSearch, problem: &mut P)
     call!(SNESLineSearchSetReason(ls, p::SNES_LINESEARCH_SUCCEEDED))
 }
 
-/// The step length when the full step did not lower the merit φ (φ(0) = `f0`, φ(1) = `g1`):
-/// the minimum of the parabola through λ = 0, ½, 1 in [0.1, 1] (the smaller of φ(½), φ(1)
-/// where it has none), or the first λ = ½, ¼, … ≥ 1/64 where φ is finite; `None` if there is
-/// none. `merit(λ)` evaluates φ.
+/// The merit φ(λ) = ‖F(x − λy)‖² (∞ where F cannot be evaluated), with x − λy left in `w`.
+fn merit<P: SnesProblem>(
+    problem: &mut P,
+    x: &Vector,
+    y: &Vector,
+    w: &mut Vector,
+    lambda: f64,
+) -> Result<f64, PetscError> {
+    call!(VecWAXPY(w.raw, -lambda, y.raw, x.raw))?;
+    Ok(problem.objective(w)?.unwrap_or(f64::INFINITY))
+}
+
+/// [`LineSearch::ResidualSecant`]'s step when the full step lowered the merit, right after
+/// φ(1) = `g1` was evaluated at `w` = x − y (`xyf` = [x, y, F(x)]; `g` is a work vector): 1
+/// when [`residual_secant_step`] gives 1; its longer step when φ there is below φ(1), else 1;
+/// `None` when it gives a shorter one (the caller takes PETSc's `l2` step instead).
+fn secant_choice<P: SnesProblem>(
+    problem: &mut P,
+    xyf: [&Vector; 3],
+    w: &mut Vector,
+    g: &mut Vector,
+    g1: f64,
+) -> Result<Option<f64>, PetscError> {
+    let [x, y, f] = xyf;
+    // F(x − y) is the problem's last residual: copied, not evaluated again
+    if !problem.residual(w, g)? {
+        return Ok(None);
+    }
+    call!(VecAYPX(g.raw, -1.0, f.raw))?;
+    let (along, squared) = (problem.dot(f, g)?, problem.dot(g, g)?);
+    let lambda = residual_secant_step(along, squared).unwrap_or(0.0);
+    if lambda <= 1.0 {
+        return Ok((lambda == 1.0).then_some(1.0));
+    }
+    let gl = merit(problem, x, y, w, lambda)?;
+    Ok(Some(if gl < g1 { lambda } else { 1.0 }))
+}
+
+/// The full step within `SECANT_SNAP` of [`residual_secant_step`]'s λ, and its largest λ,
+/// `SECANT_LAMBDA_MAX`. PETSc's `l2` (the `Secant` line search, whose λ is unbounded) took
+/// λ > 1.05 in 349 and λ > 3 in 17 of the 565 Newton iterations of the coarse hyperbolic seed
+/// scene: the continuum tangent is stiffer than the consistent one, so Newton's corrections
+/// fall short. Shorter steps are left to `l2`'s rule: on interfaces sliding at 100 Pa
+/// (`tests/hard_cases.rs`) it took λ = 0.07, 0.008 and 1e-4 in successive iterations, and a
+/// residual secant with a floor of 0.1, or of 1e-6, failed the step.
+const SECANT_SNAP: f64 = 0.1;
+/// See [`SECANT_SNAP`].
+const SECANT_LAMBDA_MAX: f64 = 1.0e4;
+
+/// The minimum of ‖F(0) − λ·d‖² over λ for d = F(0) − F(1) (F taken linear along the
+/// correction, the secant through the two residual vectors): λ = F(0)ᵀd / ‖d‖² from
+/// `along` = F(0)ᵀd and `squared` = ‖d‖², at most 1e4 and snapped to 1 within 0.1; `None`
+/// when it is not a positive finite number.
+fn residual_secant_step(along: f64, squared: f64) -> Option<f64> {
+    let lambda = along / squared;
+    if !(lambda.is_finite() && lambda > 0.0) {
+        return None;
+    }
+    if (lambda - 1.0).abs() <= SECANT_SNAP {
+        return Some(1.0);
+    }
+    Some(lambda.min(SECANT_LAMBDA_MAX))
+}
+
+/// [`LineSearch::FullStepFirst`]'s step from the merit φ at λ = 0, ½, 1: the vertex of the
+/// parabola through them in [0.1, 1], or the smaller of φ(½) and φ(1) where it has none.
+fn clamped_vertex(f0: f64, h: f64, g1: f64) -> f64 {
+    let c = 2.0 * f0 - 4.0 * h + 2.0 * g1;
+    let b = -3.0 * f0 + 4.0 * h - g1;
+    if c > 0.0 {
+        (-b / (2.0 * c)).clamp(0.1, 1.0)
+    } else if h < g1 {
+        0.5
+    } else {
+        1.0
+    }
+}
+
+/// PETSc's `l2` step (one secant iteration, `-snes_linesearch_max_it 1`) from the merit φ
+/// at λ = 0, ½, 1: λ = 1 − φ'(1)/|φ''| with the derivatives of the parabola through them,
+/// downhill also where it is concave; ½ below `l2`'s least step 1e-12, 1 where λ is not finite
+/// or above its largest step 1e8.
+fn l2_vertex(f0: f64, h: f64, g1: f64) -> f64 {
+    let slope = 3.0 * g1 - 4.0 * h + f0;
+    let curvature = 4.0 * g1 - 8.0 * h + 4.0 * f0;
+    let lambda = if curvature > 0.0 {
+        1.0 - slope / curvature
+    } else {
+        1.0 + slope / curvature
+    };
+    if lambda < 1.0e-12 {
+        0.5
+    } else if !lambda.is_finite() || lambda > 1.0e8 {
+        1.0
+    } else {
+        lambda
+    }
+}
+
+/// The step length when the full step did not lower the merit φ (φ(0) = `f0`, φ(1) = `g1`),
+/// or when the residual secant leaves it to the parabola: `vertex(φ(0), φ(½), φ(1))`
+/// ([`clamped_vertex`] or [`l2_vertex`]), or the first λ = ½, ¼, … ≥ 1/64 where φ is finite;
+/// `None` if there is none. `merit(λ)` evaluates φ.
 fn fallback_step(
     f0: f64,
     g1: f64,
+    vertex: fn(f64, f64, f64) -> f64,
     merit: &mut dyn FnMut(f64) -> Result<f64, PetscError>,
 ) -> Result<Option<f64>, PetscError> {
     let h = merit(0.5)?;
     if h.is_finite() && g1.is_finite() && f0.is_finite() {
-        let c = 2.0 * f0 - 4.0 * h + 2.0 * g1;
-        let b = -3.0 * f0 + 4.0 * h - g1;
-        return Ok(Some(if c > 0.0 {
-            (-b / (2.0 * c)).clamp(0.1, 1.0)
-        } else if h < g1 {
-            0.5
-        } else {
-            1.0
-        }));
+        return Ok(Some(vertex(f0, h, g1)));
     }
     let mut lambda = 0.5;
     let mut value = h;
@@ -1557,7 +1687,7 @@ mod line_search_tests {
     /// The merit values at the fallback's trial points, recorded.
     fn step_of(f0: f64, g1: f64, phi: impl Fn(f64) -> f64) -> (Option<f64>, Vec<f64>) {
         let mut asked = Vec::new();
-        let step = fallback_step(f0, g1, &mut |l| {
+        let step = fallback_step(f0, g1, super::clamped_vertex, &mut |l| {
             asked.push(l);
             Ok(phi(l))
         })
@@ -1585,6 +1715,41 @@ mod line_search_tests {
         // φ(λ) = 1 + 2λ − 1.9λ²: φ(1) = 1.1 < φ(½) = 1.525
         let phi = |l: f64| 1.0 + 2.0 * l - 1.9 * l * l;
         assert_eq!(step_of(phi(0.0), phi(1.0), phi).0, Some(1.0));
+    }
+
+    #[test]
+    fn the_residual_secant_extrapolates_a_short_correction() {
+        use super::residual_secant_step;
+        // F linear along the correction, the full step removing 70 % of it: F(λ) = (1 − 0.7λ)F(0)
+        // with F(0) = (3, 4): d = 0.7·F(0), λ = 1 / 0.7
+        let f0 = [3.0, 4.0];
+        let d = [0.7 * 3.0, 0.7 * 4.0];
+        let along = f0[0] * d[0] + f0[1] * d[1];
+        let squared = d[0] * d[0] + d[1] * d[1];
+        let lambda = residual_secant_step(along, squared).unwrap();
+        assert!((lambda - 1.0 / 0.7).abs() < 1e-12, "{lambda}");
+        // a correction within 10 % of the root is the full step; far ones are clamped
+        assert_eq!(residual_secant_step(1.05, 1.0), Some(1.0));
+        assert_eq!(residual_secant_step(10.0, 1.0), Some(10.0));
+        assert_eq!(residual_secant_step(1.0e6, 1.0), Some(1.0e4));
+        assert_eq!(residual_secant_step(0.01, 1.0), Some(0.01));
+        // no descent along the correction, or no change of F: no secant step
+        assert_eq!(residual_secant_step(-1.0, 1.0), None);
+        assert_eq!(residual_secant_step(0.0, 0.0), None);
+    }
+
+    #[test]
+    fn the_l2_vertex_is_petscs_secant_step() {
+        use super::l2_vertex;
+        // φ(λ) = 1 − 2λ + 3λ²: minimum at 1/3; a long one (φ = 1 − 2λ + 0.5λ²) at 2, beyond
+        // the full step; a steep one at 1e-4, below the clamped vertex's 0.1
+        let at = |phi: &dyn Fn(f64) -> f64| l2_vertex(phi(0.0), phi(0.5), phi(1.0));
+        assert!((at(&|l| 1.0 - 2.0 * l + 3.0 * l * l) - 1.0 / 3.0).abs() < 1e-15);
+        assert!((at(&|l| 1.0 - 2.0 * l + 0.5 * l * l) - 2.0).abs() < 1e-14);
+        assert!((at(&|l| 1.0 - 2.0 * l + 1.0e4 * l * l) - 1.0e-4).abs() < 1e-15);
+        // concave: downhill past the full step; no decrease from λ = 0: the midpoint
+        assert!(at(&|l| 1.0 + 2.0 * l - 1.9 * l * l) > 1.0);
+        assert_eq!(at(&|l| 1.0 + 2.0 * l + l * l), 0.5);
     }
 
     #[test]

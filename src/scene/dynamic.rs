@@ -69,10 +69,10 @@ pub struct DynamicSpec {
     /// mesh)").
     #[serde(default)]
     pub predictor: Predictor,
-    /// How a time step's Newton corrections are scaled: `full_step_first` (the default) or
-    /// `secant`, the static stages' default ([`LineSearch`]). The two agree to within the
-    /// Newton tolerance's effect on the path-dependent materials ([`crate::performance`], "The
-    /// seed quake (coarse mesh)").
+    /// How a time step's Newton corrections are scaled: `full_step_first` (the default),
+    /// `secant` or `residual_secant` (the static stages' default; [`LineSearch`]).
+    /// `full_step_first` and `secant` agree to within the Newton tolerance's effect on the
+    /// path-dependent materials ([`crate::performance`], "The seed quake (coarse mesh)").
     #[serde(default = "full_step_first")]
     pub line_search: LineSearch,
 }

@@ -19,7 +19,7 @@ use super::integrator::TimeIntegrator;
 use super::model::Model;
 use super::report::SolveReport;
 use crate::linalg::petsc::{Matrix, PetscError, Snes, SnesOutcome, SnesProblem, Vector};
-use crate::parallel::{any_error, any_true, exact_norm2};
+use crate::parallel::{any_error, any_true, exact_norm2, exact_sum};
 use mpi::traits::Communicator;
 use std::time::Instant;
 
@@ -259,6 +259,11 @@ impl SnesProblem for NewtonStep<'_, '_> {
 
     fn jacobian_matrix(&self) -> &Matrix {
         &self.model.k
+    }
+
+    fn dot(&mut self, a: &Vector, b: &Vector) -> Result<f64, PetscError> {
+        let comm = self.model.comm;
+        a.read(|sa| b.read(|sb| exact_sum(comm, sa.iter().zip(sb).map(|(x, y)| x * y))))?
     }
 
     fn converged(&mut self, it: u32, _fnorm: f64, linear_iterations: u32) -> Option<bool> {

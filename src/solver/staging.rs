@@ -181,6 +181,7 @@ impl Problem<'_> {
         snes.set_line_search(match line_search {
             LineSearch::Secant => crate::linalg::petsc::LineSearch::Secant,
             LineSearch::FullStepFirst => crate::linalg::petsc::LineSearch::FullStepFirst,
+            LineSearch::ResidualSecant => crate::linalg::petsc::LineSearch::ResidualSecant,
         });
         self.fresh_preconditioner()
     }

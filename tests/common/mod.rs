@@ -362,3 +362,12 @@ pub fn assert_bitwise_equal(a: &Path, b: &Path) -> Vec<String> {
     }
     fields
 }
+
+/// A count of the run in the output directory `out` (its `summary.json`).
+pub fn summary_count(out: &Path, key: &str) -> u64 {
+    let text = std::fs::read_to_string(out.join("summary.json")).unwrap();
+    let s: serde_json::Value = serde_json::from_str(&text).unwrap();
+    s[key]
+        .as_u64()
+        .unwrap_or_else(|| panic!("summary.json has {key}"))
+}
