@@ -742,7 +742,7 @@ pub enum LineSearch {
     /// of the parabola through λ = 0, ½, 1 (two more), halving while F cannot be evaluated.
     FullStepFirst,
     /// The full step, or a longer one, from the secant through F(x) and F(x − δ)
-    /// ([`residual_secant_step`]) when the full step lowers ‖F‖²: one or two residual
+    /// (`residual_secant_step`) when the full step lowers ‖F‖²: one or two residual
     /// evaluations; otherwise `Secant`'s step (three).
     ResidualSecant,
 }
