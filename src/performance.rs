@@ -131,7 +131,7 @@
 //!   side, and it forgets its rate at every step checkpoint (so that a restart repeats the
 //!   steps), which makes it idle under `--checkpoint step`.
 //! * **Line search of the static stages** (`solver.line_search`; issue 20). The quake's
-//!   `full_step_first` ("The seed quake (coarse mesh)") against the default `secant`, and each
+//!   `full_step_first` ("The seed quake (coarse mesh)") against `secant` (then the default), and each
 //!   with the extrapolating predictor, on the three coarse seed scenes: build of 7e6f952, 2
 //!   ranks, one run of each, one after the other alone on the machine (scene variants with the
 //!   keys added, `summary.json`; errors by `cfrd accuracy` against the `secant` run):
@@ -158,9 +158,50 @@
 //!   ±10 % ("Side by side: the coarse scene's 25 s"). Side by side on the GP-interface scene
 //!   (build of 692b961, three alternating pairs): `secant` 55.9, 65.2, 52.8 s, `full_step_first`
 //!   49.5, 50.0, 54.1 s; medians 55.9 and 50.0 s, 1.12 times, pairwise 0.98–1.30. The results move by less than 1e-2 of
-//!   their largest values, as with the predictor. `secant` stays the static default: the
+//!   their largest values, as with the predictor. `secant` stayed the static default: the
 //!   gain is smaller than on the quake, the cut-backs double, and the hard cases (the fine
 //!   mesh's slab stage II, where the full Newton step failed) were not run with it.
+//! * **Why `secant` needs fewer Newton iterations, and the residual secant** (the static
+//!   default from commit 0842bb7; [`crate::scene::schema::LineSearch`]). PETSc's `l2` takes
+//!   λ > 1.05 in 349 of the 565 Newton iterations of the coarse hyperbolic scene, and λ > 1.5
+//!   in 96 (`-snes_linesearch_monitor`): the continuum tangent is stiffer than the consistent
+//!   one, so the corrections fall short, and `full_step_first` never extends them. The
+//!   residual secant evaluates F at the full step, takes the secant through the residual
+//!   vectors F(x) and F(x − δ) (λ = F(x)ᵀd / ‖d‖², d = F(x) − F(x − δ), exact dot products),
+//!   and takes the full step when that λ is within 0.1 of 1 (one evaluation), the longer step
+//!   when it lowers ‖F‖ further (two), and `l2`'s step where the full step does not lower ‖F‖
+//!   or the secant would shorten it (three; on interfaces sliding at 100 Pa `l2` took λ = 1e-4,
+//!   and a residual secant kept above 0.1 or even 1e-6 failed the hard case), halving as `l2`
+//!   does where F cannot be evaluated (a GP column under 30 MPa found F only at λ = 1/512 of
+//!   its first correction, `tests/step_control.rs`). Build of
+//!   0842bb7's tree (before one `match` was rewritten for clippy, the same logic), 2 ranks,
+//!   the scene variants with `line_search` set, each pair one run after the other alone on
+//!   the machine (`summary.json`; errors by `cfrd accuracy` against the
+//!   `secant` run; the medium runs `--stop-after-stage 18`, to slab stage I, fields compared by
+//!   `cfrd compare`):
+//!
+//!   | scene | line search | wall time | Newton iterations | cut-backs | residual evaluations | assembly / solves | largest error σ_s / σ_a / deflection / crest |
+//!   |---|---|---|---|---|---|---|---|
+//!   | coarse hyperbolic | secant | 43.1 s | 490 | 5 | 1,818 | 28.3 / 14.3 s | – |
+//!   | coarse hyperbolic | residual_secant | 35.4 s | 484 | 5 | 1,153 | 20.3 / 14.5 s | 1.0e-4 / 4.0e-4 / 4.4e-5 / 1.1e-4 |
+//!   | coarse Mohr–Coulomb | secant | 43.8 s | 489 | 5 | 1,815 | 27.7 / 15.6 s | – |
+//!   | coarse Mohr–Coulomb | residual_secant | 33.5 s | 475 | 5 | 1,132 | 19.3 / 13.7 s | 1.1e-4 / 4.4e-4 / 4.5e-5 / 1.6e-6 |
+//!   | coarse GP interface | secant | 61.4 s | 559 | 5 | 2,047 | 36.4 / 24.4 s | – |
+//!   | coarse GP interface | residual_secant | 48.6 s | 555 | 5 | 1,356 | 24.9 / 23.1 s | 1.4e-3 / 2.9e-3 / 5.8e-5 / 1.8e-4 |
+//!   | medium hyperbolic, stages 1–18 | secant | 258.7 s | 670 | 0 | 2,154 | 169.1 / 86.0 s | – |
+//!   | medium hyperbolic, stages 1–18 | residual_secant | 188.7 s | 655 | 0 | 1,283 | 106.7 / 78.8 s | fields at slab_1: displacement 1.7e-2, stress 1.1e-2, strain 2.4e-2 |
+//!
+//!   The same Newton iterations and cut-backs for 34–40 % fewer residual evaluations: 1.22–1.31
+//!   times faster on the coarse scenes, 1.37 on the medium mesh's construction to slab stage I
+//!   (an earlier variant, with λ kept in [0.1, 4], gave 187.6 against 275.8 s in another
+//!   pair). The coarse slab tables move by less than 3e-3 of their largest values, less than the
+//!   predictor or `full_step_first` move them; on the medium mesh the fields at slab stage I
+//!   differ pointwise by up to 1.7e-2 (displacement) and 2.4e-2 (strain), as much as additive
+//!   Schwarz moved them ("Linear solvers on the seed dam"). The hard cases
+//!   (`tests/hard_cases.rs`) pass with it; the fine mesh's slab stage II was not run with it.
+//!   Test:
+//!   `the_residual_secant_line_search_saves_residual_evaluations_and_keeps_the_results`
+//!   (`tests/cfrd_dam.rs`).
 //! * **Load steps per stage.** Every Newton iteration integrates the GP points over the whole
 //!   step increment from the committed state (spec models §8.1); with one load step per stage an
 //!   update takes 35–70 substeps on average (small GP dam of `tests/cfrd_dam.rs`), and a step too
@@ -214,6 +255,24 @@
 //!   UMFPACK 44, SuperLU 5, and MUMPS distributed over the two ranks (not canonical) 91 in 100 s.
 //!   Hence the medium and fine scenes' `-canonical_pc_factor_mat_solver_type mumps` and
 //!   `libopenblas0-serial` in `ci/install-deps.sh`.
+//! * **Block low-rank factors** (MUMPS's BLR, `-canonical_mat_mumps_icntl_35 1
+//!   -canonical_mat_mumps_cntl_7 ε`; issue 20): approximate factors as the preconditioner of
+//!   the lagged-LU GMRES. Medium hyperbolic scene, 2 ranks, build of 6540019, one run after
+//!   the other alone on the machine (`/usr/bin/time -v mpirun -n 2 cfrd run
+//!   inputs/scenes/seed_medium_hyperbolic.yaml -o OUT --stop-after-stage 18`, then `--restart`
+//!   from that run's checkpoint with `--stop-after-stage 22`; `phase_seconds` of
+//!   `summary.json`):
+//!
+//!   | stages | factors | wall time | linear solves | GMRES iterations | factorizations | peak memory per rank |
+//!   |---|---|---|---|---|---|---|
+//!   | 1–18 (to slab_1) | complete | 270.8 s | 90.8 s | 4,420 | 122 | 317 / 315 MiB |
+//!   | 1–18 | BLR, ε = 1e-6 | 262.9 s | 88.2 s | 4,481 | 122 | 333 / 337 MiB |
+//!   | 19–22 (fill_018–021) | complete | 113.0 s | 52.2 s | 879 | 36 | 448 / 451 MiB |
+//!   | 19–22 | BLR, ε = 1e-4 | 112.4 s | 54.3 s | 975 | 35 | 400 / 403 MiB |
+//!
+//!   The medium mesh's fronts are too small for low-rank blocks to pay: no gain in the solves
+//!   (±3 %, within the spread of runs), 11 % less memory after slab stage I at ε = 1e-4. The
+//!   fine mesh, whose factors take 10 GiB per rank, was not run with it.
 //! * **Distributed LU** (`linear_solver: distributed_lu`, MUMPS on the distributed matrix,
 //!   factored by all ranks together; commit a2ebc86). On the small generated dam of
 //!   `tests/cfrd_dam.rs` (elastic fill, hyperbolic interface, 1,005 DOFs) the 2-rank run agrees

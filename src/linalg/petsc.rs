@@ -1032,8 +1032,12 @@ fn full_step_first_apply<P: SnesProblem>(
         Some(l) => Some(l),
         None if g1 < f0 && !secant => Some(1.0),
         None => {
-            let vertex = if secant { l2_vertex } else { clamped_vertex };
-            fallback_step(f0, g1, vertex, &mut |l| merit(problem, &x, &y, &mut w, l))?
+            let rule = if secant {
+                L2_FALLBACK
+            } else {
+                FULL_STEP_FIRST_FALLBACK
+            };
+            fallback_step(f0, g1, rule, &mut |l| merit(problem, &x, &y, &mut w, l))?
         }
     };
     let Some(lambda) = lambda else {
@@ -1152,28 +1156,63 @@ fn l2_vertex(f0: f64, h: f64, g1: f64) -> f64 {
     }
 }
 
+/// How [`fallback_step`] picks λ: the vertex rule on φ at 0, ½, 1, the least λ to which it
+/// halves where F cannot be evaluated, and whether it then applies the vertex rule on [0, λ].
+#[derive(Clone, Copy)]
+struct Fallback {
+    vertex: fn(f64, f64, f64) -> f64,
+    least: f64,
+    rescale: bool,
+}
+
+/// [`LineSearch::FullStepFirst`]'s fallback: [`clamped_vertex`], halving to 1/64.
+const FULL_STEP_FIRST_FALLBACK: Fallback = Fallback {
+    vertex: clamped_vertex,
+    least: 1.0 / 64.0,
+    rescale: false,
+};
+
+/// [`LineSearch::ResidualSecant`]'s fallback, PETSc's `l2`: [`l2_vertex`], halving to its
+/// least step 1e-12 and the vertex on [0, λ] from there (on a GP column under 30 MPa `l2`
+/// found F only at λ = 1/512 of a first correction).
+const L2_FALLBACK: Fallback = Fallback {
+    vertex: l2_vertex,
+    least: 1.0e-12,
+    rescale: true,
+};
+
 /// The step length when the full step did not lower the merit φ (φ(0) = `f0`, φ(1) = `g1`),
-/// or when the residual secant leaves it to the parabola: `vertex(φ(0), φ(½), φ(1))`
-/// ([`clamped_vertex`] or [`l2_vertex`]), or the first λ = ½, ¼, … ≥ 1/64 where φ is finite;
-/// `None` if there is none. `merit(λ)` evaluates φ.
+/// or when the residual secant leaves it to the parabola: `rule.vertex(φ(0), φ(½), φ(1))`;
+/// where φ is not finite, the first λ = ½, ¼, … ≥ `rule.least` where it is (with
+/// `rule.rescale`, λ times the vertex rule on φ(0), φ(λ/2), φ(λ) unless that reaches 0.95 of
+/// the last λ where φ was not finite); `None` if there is none.
+/// `merit(λ)` evaluates φ.
 fn fallback_step(
     f0: f64,
     g1: f64,
-    vertex: fn(f64, f64, f64) -> f64,
+    rule: Fallback,
     merit: &mut dyn FnMut(f64) -> Result<f64, PetscError>,
 ) -> Result<Option<f64>, PetscError> {
     let h = merit(0.5)?;
     if h.is_finite() && g1.is_finite() && f0.is_finite() {
-        return Ok(Some(vertex(f0, h, g1)));
+        return Ok(Some((rule.vertex)(f0, h, g1)));
     }
     let mut lambda = 0.5;
     let mut value = h;
     while !value.is_finite() {
         lambda *= 0.5;
-        if lambda < 1.0 / 64.0 {
+        if lambda < rule.least {
             return Ok(None);
         }
         value = merit(lambda)?;
+    }
+    if rule.rescale && f0.is_finite() {
+        let mid = merit(0.5 * lambda)?;
+        // as `l2`: never back to 0.95 of the last λ where F failed (2λ)
+        let vertex = lambda * (rule.vertex)(f0, mid, value);
+        if mid.is_finite() && vertex <= 1.9 * lambda {
+            return Ok(Some(vertex));
+        }
     }
     Ok(Some(lambda))
 }
@@ -1687,7 +1726,7 @@ mod line_search_tests {
     /// The merit values at the fallback's trial points, recorded.
     fn step_of(f0: f64, g1: f64, phi: impl Fn(f64) -> f64) -> (Option<f64>, Vec<f64>) {
         let mut asked = Vec::new();
-        let step = fallback_step(f0, g1, super::clamped_vertex, &mut |l| {
+        let step = fallback_step(f0, g1, super::FULL_STEP_FIRST_FALLBACK, &mut |l| {
             asked.push(l);
             Ok(phi(l))
         })
