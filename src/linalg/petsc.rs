@@ -1002,7 +1002,7 @@ unsafe fn full_step_shell<P: SnesProblem>(
 ) -> p::PetscErrorCode {
     // SAFETY: the caller's contract
     let problem = unsafe { &mut *(ctx as *mut P) };
-    match full_step_first_apply(ls, problem, secant) {
+    match shell_line_search_apply(ls, problem, secant) {
         Ok(()) => 0,
         Err(e) => e.code.max(CALLBACK_FAILED),
     }
@@ -1013,7 +1013,7 @@ unsafe fn full_step_shell<P: SnesProblem>(
 /// [`fallback_step`]'s with the parabola's vertex kept in [0.1, 1]. With `secant`
 /// ([`LineSearch::ResidualSecant`]): [`secant_choice`]'s λ, else the vertex as PETSc's `l2`
 /// takes it.
-fn full_step_first_apply<P: SnesProblem>(
+fn shell_line_search_apply<P: SnesProblem>(
     ls: p::SNESLineSearch,
     problem: &mut P,
     secant: bool,
