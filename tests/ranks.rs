@@ -185,27 +185,12 @@ fn partition_ahead_of_time_gives_the_same_results() {
     assert!(!dir.path().join("huge.part.json").exists());
 }
 
-/// A dam of two elements (one per layer).
-const TWO_ELEMENTS: &str = "name: two-elements
-units: SI
-mesh:
-  dam: { height: 10.0, crest_width: 8.0, upstream_slope: 1.4, downstream_slope: 1.4, length: 10.0,
-         divisions: [1, 1, 2], layers: 2 }
-materials:
-  fill: { model: elastic, young: 3.0e8, poisson: 0.28, density: 2150.0 }
-blocks:
-  layer_1: { material: fill }
-  layer_2: { material: fill }
-boundary:
-  - { set: base, fix: [x, y, z] }
-loads:
-  gravity: { g: [0.0, 0.0, -9.81] }
-";
-
 #[test]
 fn more_ranks_than_elements_are_refused_by_the_run() {
     let dir = tempdir();
-    std::fs::write(dir.path().join("two.yaml"), TWO_ELEMENTS).unwrap();
+    // the scene's dam with one element per layer: two elements
+    let two = SCENE.replace("divisions: [12, 8, 10]", "divisions: [1, 1, 2]");
+    std::fs::write(dir.path().join("two.yaml"), two).unwrap();
     let ok = cfrd_mpi(2, dir.path(), &["run", "two.yaml", "-o", "a", "-q"]);
     assert!(ok.status.success(), "{}", text(&ok));
     let o = cfrd_mpi(3, dir.path(), &["run", "two.yaml", "-o", "b", "-q"]);
