@@ -88,7 +88,7 @@ enum Command {
         /// `solver.linear_solver`; the scene (and its hash) stays unchanged, so a long run can
         /// continue from its checkpoint on another solver (the results then agree with the
         /// scene's to the solvers' tolerances, not bit for bit).
-        #[arg(long, value_name = "iterative|canonical_lu|distributed_lu", value_parser = parse_linear_solver)]
+        #[arg(long, value_name = "iterative|reduced_amg|canonical_lu|distributed_lu", value_parser = parse_linear_solver)]
         linear_solver: Option<cfrd::scene::schema::LinearSolver>,
         /// Write into an output directory that holds another run's `results.h5`,
         /// `checkpoint.h5` or `summary.json` (its old checkpoint is removed first); without it
@@ -253,15 +253,16 @@ fn parse_stop_after(s: &str) -> Result<cfrd::run::StopAfter, String> {
     })
 }
 
-/// Parses `--linear-solver`: iterative, canonical_lu or distributed_lu.
+/// Parses `--linear-solver`: iterative, reduced_amg, canonical_lu or distributed_lu.
 fn parse_linear_solver(s: &str) -> Result<cfrd::scene::schema::LinearSolver, String> {
     use cfrd::scene::schema::LinearSolver;
     match s {
         "iterative" => Ok(LinearSolver::Iterative),
         "canonical_lu" => Ok(LinearSolver::CanonicalLu),
         "distributed_lu" => Ok(LinearSolver::DistributedLu),
+        "reduced_amg" => Ok(LinearSolver::ReducedAmg),
         _ => Err(format!(
-            "'{s}': expected iterative, canonical_lu or distributed_lu"
+            "'{s}': expected iterative, reduced_amg, canonical_lu or distributed_lu"
         )),
     }
 }

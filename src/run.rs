@@ -298,6 +298,7 @@ pub fn run_scene(
     let recorder = QuakeRecorder::new(scene);
     for (k, stage) in scene.stages.iter().enumerate().skip(first_stage) {
         let stage_start = Instant::now();
+        let counts_at_start = stage_counts(&report);
         say(&format!(
             "stage {}/{n_stages} '{}': {} load step(s)",
             k + 1,
@@ -386,9 +387,13 @@ pub fn run_scene(
         let info = step_info(k, stage, path.t_end, path.t_end);
         write_results(world, &mut problem, &mut file, info, has_interfaces)?;
         stages_written += 1;
+        let counts = stage_counts(&report);
         report.stage_seconds.push(StageSeconds {
             stage: stage.name.clone(),
             seconds: stage_start.elapsed().as_secs_f64(),
+            steps: counts.0 - counts_at_start.0,
+            newton_iterations: counts.1 - counts_at_start.1,
+            ksp_iterations: counts.2 - counts_at_start.2,
         });
         if checkpoints {
             // the results of the completed stages are published before the checkpoint that
@@ -875,4 +880,11 @@ fn progress_bar(show: bool, len: u64) -> indicatif::ProgressBar {
             .progress_chars("=> "),
     );
     bar
+}
+
+/// The report's converged steps, Newton iterations and Krylov iterations so far (a stage's
+/// counts in the run summary are differences of these).
+fn stage_counts(report: &SolveReport) -> (u32, u32, u64) {
+    let ksp = report.ksp_iterations.iter().map(|&k| u64::from(k)).sum();
+    (report.steps, report.newton_iterations, ksp)
 }

@@ -174,7 +174,8 @@ impl PhaseTimer {
     }
 }
 
-/// The wall time of one completed stage ([`RunSummary::stage_seconds`]).
+/// The wall time and solver counts of one completed stage ([`RunSummary::stage_seconds`]);
+/// the counts are those of the run (or part of a run) that completed the stage.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct StageSeconds {
@@ -182,6 +183,15 @@ pub struct StageSeconds {
     pub stage: String,
     /// Wall-clock seconds.
     pub seconds: f64,
+    /// Converged load or time steps.
+    #[serde(default)]
+    pub steps: u32,
+    /// Newton iterations, of converged and of cut-back steps.
+    #[serde(default)]
+    pub newton_iterations: u32,
+    /// Krylov iterations of all linear solves.
+    #[serde(default)]
+    pub ksp_iterations: u64,
 }
 
 /// The run summary.
@@ -413,6 +423,9 @@ mod tests {
             stage_seconds: vec![StageSeconds {
                 stage: "fill_1".into(),
                 seconds: 1.25,
+                steps: 3,
+                newton_iterations: 6,
+                ksp_iterations: 30,
             }],
             modal: Some(ModalSummary {
                 stage: "modes".into(),
@@ -430,6 +443,7 @@ mod tests {
         assert_eq!(value["phase_seconds"]["solve"], 1.5);
         assert_eq!(value["peak_memory_bytes_per_rank"][1], 2048);
         assert_eq!(value["stage_seconds"][0]["stage"], "fill_1");
+        assert_eq!(value["stage_seconds"][0]["ksp_iterations"], 30);
         let bad = text.replacen("\"ranks\"", "\"rank_count\"", 1);
         assert!(serde_json::from_str::<RunSummary>(&bad).is_err());
         let dir = tempfile::tempdir().unwrap();

@@ -4,4 +4,5 @@
 pub mod ffi;
 pub mod lagged_lu;
 pub mod petsc;
+pub mod reduced_amg;
 pub mod slepc;

@@ -12,6 +12,7 @@
 
 use super::ffi as p;
 use super::lagged_lu::{distributed_context, DistributedLu, LaggedLu, DISTRIBUTED_LU_NAME};
+use super::reduced_amg::{ReducedAmg, REDUCED_AMG_NAME};
 use mpi::raw::AsRaw;
 use mpi::topology::SimpleCommunicator;
 use std::ffi::{c_char, CStr, CString};
@@ -625,7 +626,7 @@ impl Drop for Matrix {
 }
 
 /// Sets `-name value` in PETSc's options database unless the user has set `-name`.
-fn default_option(name: &str, value: &str) -> Result<(), PetscError> {
+pub(super) fn default_option(name: &str, value: &str) -> Result<(), PetscError> {
     let (n, v) = (
         CString::new(name).expect("option name without NUL"),
         CString::new(value).expect("option value without NUL"),
@@ -635,6 +636,60 @@ fn default_option(name: &str, value: &str) -> Result<(), PetscError> {
     if set == p::PETSC_FALSE {
         call!(PetscOptionsSetValue(null_mut(), n.as_ptr(), v.as_ptr()))?;
     }
+    Ok(())
+}
+
+/// Marks in `flags` (laid out like the rows of `pmat`) the coupled rows: an entry > 0 where a
+/// row has a nonzero entry off the diagonal in its row or its column, 0 where it is decoupled
+/// (the constrained DOFs and the nodes of fill not yet placed). Each rank marks its own rows
+/// and the columns of their nonzero entries (a count, so the sum is exact in any order).
+/// Collective.
+pub(super) fn mark_coupled_rows(pmat: p::Mat, flags: p::Vec) -> Result<(), PetscError> {
+    let (mut lo, mut hi) = (0, 0);
+    call!(VecGetOwnershipRange(flags, &mut lo, &mut hi))?;
+    let (lo, hi) = (lo as usize, hi as usize);
+    let mut marks = vec![false; hi - lo];
+    let mut remote: Vec<i32> = Vec::new();
+    for r in lo..hi {
+        let (mut ncols, mut cols, mut vals): (i32, *const i32, *const f64) = (0, null(), null());
+        call!(MatGetRow(pmat, r as i32, &mut ncols, &mut cols, &mut vals))?;
+        if ncols > 0 {
+            // SAFETY: MatGetRow returned `ncols` column indices and values, valid until
+            // MatRestoreRow.
+            let (cols_r, vals_r) = unsafe {
+                (
+                    std::slice::from_raw_parts(cols, ncols as usize),
+                    std::slice::from_raw_parts(vals, ncols as usize),
+                )
+            };
+            for (&c, &v) in cols_r.iter().zip(vals_r) {
+                let c = c as usize;
+                if c != r && v != 0.0 {
+                    marks[r - lo] = true;
+                    if (lo..hi).contains(&c) {
+                        marks[c - lo] = true;
+                    } else {
+                        remote.push(c as i32);
+                    }
+                }
+            }
+        }
+        call!(MatRestoreRow(pmat, r as i32, &mut ncols, &mut cols, &mut vals))?;
+    }
+    remote.sort_unstable();
+    remote.dedup();
+    remote.extend((lo..hi).filter(|&r| marks[r - lo]).map(|r| r as i32));
+    call!(VecSet(flags, 0.0))?;
+    let ones = vec![1.0; remote.len()];
+    call!(VecSetValues(
+        flags,
+        remote.len() as i32,
+        remote.as_ptr(),
+        ones.as_ptr(),
+        p::ADD_VALUES
+    ))?;
+    call!(VecAssemblyBegin(flags))?;
+    call!(VecAssemblyEnd(flags))?;
     Ok(())
 }
 
@@ -722,6 +777,8 @@ pub struct Snes {
     canonical_lu: Option<Box<CanonicalLu>>,
     /// The distributed direct solver's state (the PC shell's context); dropped after the SNES.
     distributed_lu: Option<Box<DistributedLu>>,
+    /// The reduced multigrid's state (the PC shell's context); dropped after the SNES.
+    reduced_amg: Option<Box<ReducedAmg>>,
     /// Factorizations of canonical solvers already dropped, not yet taken.
     factorizations: u64,
     /// The direct solvers are set for the Jacobians of a dynamic stage ([`Snes::set_time_stepping`]).
@@ -752,6 +809,12 @@ pub enum LineSearch {
 pub enum LinearMethod {
     /// cfrd's Krylov defaults (see `configure_ksp`): CG or GMRES with GAMG.
     Krylov,
+    /// The same Krylov method with GAMG on the coupled rows only ([`ReducedAmg`]).
+    ReducedAmg {
+        /// The owned DOFs of the stiff structure (slab, interfaces, joints), increasing: the
+        /// split factored apart from the fill.
+        structure: Vec<i32>,
+    },
     /// The canonical direct solver ([`CanonicalLu`]): results independent of the rank count.
     Canonical(CanonicalSettings),
     /// MUMPS's LU on the distributed matrix, factored by all ranks together
@@ -795,6 +858,7 @@ impl Snes {
             method,
             canonical_lu: None,
             distributed_lu: None,
+            reduced_amg: None,
             factorizations: 0,
             time_stepping: false,
             line_search: LineSearch::Secant,
@@ -833,6 +897,7 @@ impl Snes {
         self.factorizations = self.take_factorizations();
         self.canonical_lu = None;
         self.distributed_lu = None;
+        self.reduced_amg = None;
         self.configure()
     }
 
@@ -852,8 +917,11 @@ impl Snes {
                 self.time_stepping,
             )?);
         }
-        let s = &*self;
         let (max_it, rtol, ksp_max_it, symmetric) = self.settings;
+        if let LinearMethod::ReducedAmg { structure } = &self.method {
+            self.reduced_amg = Some(ReducedAmg::new(self.comm, symmetric, structure.clone())?);
+        }
+        let s = &*self;
         call!(SNESSetType(s.raw, p::SNESNEWTONLS.as_ptr() as *const c_char))?;
         // the problem's convergence test decides; only the iteration limit is SNES's own
         call!(SNESSetTolerances(s.raw, 0.0, 0.0, 0.0, max_it as i32, -1))?;
@@ -875,6 +943,11 @@ impl Snes {
             (Some(lu), _) => lu.install(ksp)?,
             (None, Some(lu)) => lu.install(ksp)?,
             (None, None) => configure_ksp(ksp, rtol, ksp_max_it, symmetric)?,
+        }
+        if let Some(amg) = &s.reduced_amg {
+            let mut pc: p::PC = null_mut();
+            call!(KSPGetPC(ksp, &mut pc))?;
+            amg.install(pc)?;
         }
         // options (scene and command line) are applied here, so a bad one is an input error
         call!(SNESSetFromOptions(s.raw))
@@ -1417,52 +1490,7 @@ impl CanonicalLu {
         else {
             unreachable!("created above");
         };
-        let (lo, hi) = flags.ownership_range()?;
-        let mut marks = vec![false; hi - lo];
-        let mut remote: Vec<i32> = Vec::new();
-        for r in lo..hi {
-            let (mut ncols, mut cols, mut vals): (i32, *const i32, *const f64) = (0, null(), null());
-            call!(MatGetRow(pmat, r as i32, &mut ncols, &mut cols, &mut vals))?;
-            if ncols > 0 {
-                // SAFETY: MatGetRow returned `ncols` column indices and values, valid until
-                // MatRestoreRow.
-                let (cols_r, vals_r) = unsafe {
-                    (
-                        std::slice::from_raw_parts(cols, ncols as usize),
-                        std::slice::from_raw_parts(vals, ncols as usize),
-                    )
-                };
-                for (&c, &v) in cols_r.iter().zip(vals_r) {
-                    let c = c as usize;
-                    if c != r && v != 0.0 {
-                        marks[r - lo] = true;
-                        if (lo..hi).contains(&c) {
-                            marks[c - lo] = true;
-                        } else {
-                            remote.push(c as i32);
-                        }
-                    }
-                }
-            }
-            call!(MatRestoreRow(pmat, r as i32, &mut ncols, &mut cols, &mut vals))?;
-        }
-        remote.sort_unstable();
-        remote.dedup();
-        flags.write(|f| {
-            for (o, &m) in f.iter_mut().zip(&marks) {
-                *o = if m { 1.0 } else { 0.0 };
-            }
-        })?;
-        let ones = vec![1.0; remote.len()];
-        call!(VecSetValues(
-            flags.raw,
-            remote.len() as i32,
-            remote.as_ptr(),
-            ones.as_ptr(),
-            p::ADD_VALUES
-        ))?;
-        call!(VecAssemblyBegin(flags.raw))?;
-        call!(VecAssemblyEnd(flags.raw))?;
+        mark_coupled_rows(pmat, flags.raw)?;
         call!(MatGetDiagonal(pmat, diag.raw))?;
         let coupled: Vec<bool> = gather
             .gather(flags)?
@@ -1623,7 +1651,10 @@ unsafe fn shell_iterations(pc: p::PC) -> Option<u32> {
     }
     // SAFETY: the name set by `install`, NUL-terminated while the PC lives.
     let name = unsafe { std::ffi::CStr::from_ptr(name) }.to_bytes_with_nul();
-    if name == DISTRIBUTED_LU_NAME {
+    if name == REDUCED_AMG_NAME {
+        // an ordinary preconditioner of the outer Krylov solve, whose iterations count
+        None
+    } else if name == DISTRIBUTED_LU_NAME {
         // SAFETY: the distributed LU's shell (its name), caller's contract.
         unsafe { distributed_context(pc) }
             .ok()

@@ -393,6 +393,9 @@ pub enum LinearSolver {
     /// its share of the factors (for meshes whose factors do not fit one rank); results agree
     /// between rank counts to rounding.
     DistributedLu,
+    /// Krylov as `iterative`, with algebraic multigrid on the coupled rows only (the nodes of
+    /// fill not yet placed and the constrained DOFs taken out; [`crate::linalg::reduced_amg`]).
+    ReducedAmg,
 }
 
 fn rtol() -> f64 {

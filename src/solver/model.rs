@@ -202,6 +202,31 @@ impl<'a> Model<'a> {
         Ok((elem_block, blocks))
     }
 
+    /// The owned DOFs (global indices, increasing) of the stiff structure that the reduced
+    /// multigrid factors apart from the fill ([`crate::linalg::reduced_amg`]): the nodes of
+    /// zero-thickness elements (interfaces and joints, both faces) and of the blocks with
+    /// incompatible modes (the face slab).
+    pub(super) fn structure_dofs(&self) -> Vec<i32> {
+        let mesh = &self.scene.mesh;
+        let mut stiff = vec![false; mesh.num_nodes()];
+        for (&e, &(b, _)) in self.disc.elements.iter().zip(&self.elem_block) {
+            let e = e as usize;
+            if mesh.is_interface(e) || self.scene.block_element[b] == SolidElement::IncompatibleModes {
+                for &n in &mesh.elements[e].nodes {
+                    stiff[n as usize] = true;
+                }
+            }
+        }
+        let lo = self.disc.dof_lo as i32;
+        self.disc
+            .owned_nodes
+            .iter()
+            .enumerate()
+            .filter(|(_, &n)| stiff[n as usize])
+            .flat_map(|(i, _)| (0..3).map(move |c| lo + 3 * i as i32 + c))
+            .collect()
+    }
+
     /// Gives the elements of the blocks that ask for them their incompatible modes
     /// (`crate::element::hex8_modes`), in block-local order.
     fn attach_modes(

@@ -85,6 +85,9 @@ impl<'a> Problem<'a> {
     fn nonlinear_solver(petsc: &Petsc, scene: &Scene, model: &Model) -> Result<Snes, SolveError> {
         let method = match scene.file.solver.linear_solver {
             LinearSolver::Iterative => LinearMethod::Krylov,
+            LinearSolver::ReducedAmg => LinearMethod::ReducedAmg {
+                structure: model.structure_dofs(),
+            },
             LinearSolver::CanonicalLu => LinearMethod::Canonical(CanonicalSettings {
                 dofs: model.disc.canonical_dofs(),
                 reuse_factorization: scene.file.solver.reuse_factorization,

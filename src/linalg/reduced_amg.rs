@@ -1,0 +1,466 @@
+//! Algebraic multigrid on the coupled rows, with the stiff structure split off: the
+//! preconditioner of the Krylov solver `linear_solver: reduced_amg` (issue 20).
+//!
+//! **Why GAMG on the whole Jacobian fails.** A staged dam's Jacobian holds a row for every DOF
+//! of the mesh, placed or not: the nodes of fill not yet placed and the constrained DOFs are
+//! decoupled rows (a diagonal entry only). Smoothed-aggregation multigrid (GAMG) on that whole
+//! matrix fails at the first fill stage of the medium seed mesh (PC failed, PETSc reason −11):
+//! the decoupled nodes become aggregates of one node, which cannot carry the six rigid-body
+//! modes, and the coarse operators are singular. With the decoupled rows taken out it carries
+//! the first two fill stages and fails in the third; with the translations only as near-null
+//! space it carries the whole construction, but once the slab is cast it needs some 490 GMRES
+//! iterations per solve (impoundment, relative tolerance 1e-10). The face slab (25.5 GPa, one
+//! element through its thickness) and the zero-thickness interfaces and joints, whose normal
+//! stiffness is orders of magnitude above the neighbouring rockfill, are what defeats it.
+//!
+//! **What this shell does.** y = P⁻¹x in three parts:
+//! - the decoupled rows by their diagonal, y_i = x_i / a_ii;
+//! - the coupled nodes (a node with any coupled DOF keeps all three, so the block has block
+//!   size 3) as one block, extracted from the preconditioning matrix at every Jacobian;
+//! - on that block a multiplicative field split (block Gauss–Seidel): the **structure** (the
+//!   nodes of zero-thickness elements, both faces, and of the blocks with incompatible modes,
+//!   i.e. the face slab; [`ReducedAmg::new`]'s `structure`) by a complete LU (MUMPS over the
+//!   ranks), the **fill** by GAMG with the rigid-body translations as near-null space.
+//!
+//! Options take the prefix `reduced_`: `-reduced_split false` drops the split (GAMG on the
+//! whole block), `-reduced_near_null_modes 6` gives GAMG the rotations too (the default is 3:
+//! with all six the fill's GAMG reports PC failed at the medium mesh's impoundment, and the
+//! whole block's in its third fill stage), `-reduced_fieldsplit_fill_pc_type hypre`,
+//! `-reduced_fieldsplit_structure_pc_factor_mat_solver_type ...` and so on choose the parts.
+//! Memory and work split between the ranks: each holds its rows of the matrix, its share of
+//! the multigrid hierarchy and of the structure's factors.
+#![allow(unsafe_code)]
+
+use super::ffi as p;
+use super::petsc::{chk, default_option, mark_coupled_rows, PetscError, CALLBACK_FAILED};
+use std::ffi::{c_char, CString};
+use std::ptr::null_mut;
+
+macro_rules! call {
+    ($f:ident ( $($arg:expr),* $(,)? )) => {
+        chk(unsafe { p::$f($($arg),*) }, stringify!($f))
+    };
+}
+
+/// The name the shell reports (`-ksp_view`), and by which it is recognised.
+pub const REDUCED_AMG_NAME: &[u8] = b"multigrid on the coupled rows\0";
+
+/// The options prefix of the inner multigrid solve.
+const PREFIX: &str = "reduced_";
+
+/// State of the shell: the coupled rows of the current stage, their block and its multigrid.
+pub struct ReducedAmg {
+    comm: mpi::ffi::MPI_Comm,
+    /// Inner solver: `preonly` with GAMG on the coupled block.
+    ksp: p::KSP,
+    /// The owned coupled rows (global indices, whole nodes).
+    rows: Vec<i32>,
+    /// `rows` as a block index set of block size 3.
+    is: p::IS,
+    /// The coupled block of the preconditioning matrix.
+    sub: p::Mat,
+    /// Coupling marks, laid out like the rows.
+    flags: p::Vec,
+    /// Diagonal of the preconditioning matrix (the decoupled rows' solution is b_i / a_ii).
+    diag: p::Vec,
+    /// The owned DOFs of the stiff structure (slab, interfaces, joints), increasing.
+    structure: Vec<i32>,
+}
+
+impl ReducedAmg {
+    /// The shell's state on communicator `comm`; `symmetric` keeps GAMG's Chebyshev smoothers,
+    /// otherwise the levels are smoothed by Richardson + SOR (see `configure_ksp`);
+    /// `structure`: this rank's DOFs of the stiff structure (global indices, increasing), the
+    /// split factored apart from the fill.
+    pub fn new(
+        comm: mpi::ffi::MPI_Comm,
+        symmetric: bool,
+        structure: Vec<i32>,
+    ) -> Result<Box<ReducedAmg>, PetscError> {
+        if !symmetric {
+            for level in ["", "fieldsplit_fill_"] {
+                default_option(&format!("-{PREFIX}{level}mg_levels_ksp_type"), "richardson")?;
+                default_option(&format!("-{PREFIX}{level}mg_levels_pc_type"), "sor")?;
+            }
+        }
+        default_option(&format!("-{PREFIX}fieldsplit_structure_pc_type"), "lu")?;
+        default_option(
+            &format!("-{PREFIX}fieldsplit_structure_pc_factor_mat_solver_type"),
+            "mumps",
+        )?;
+        default_option(&format!("-{PREFIX}fieldsplit_fill_pc_type"), "gamg")?;
+        Ok(Box::new(ReducedAmg {
+            comm,
+            ksp: null_mut(),
+            rows: Vec::new(),
+            is: null_mut(),
+            sub: null_mut(),
+            flags: null_mut(),
+            diag: null_mut(),
+            structure,
+        }))
+    }
+
+    /// Makes `pc` apply this shell.
+    pub(crate) fn install(&self, pc: p::PC) -> Result<(), PetscError> {
+        call!(PCSetType(pc, p::PCSHELL.as_ptr() as *const c_char))?;
+        let ctx = self as *const ReducedAmg as *mut std::ffi::c_void;
+        call!(PCShellSetContext(pc, ctx))?;
+        call!(PCShellSetSetUp(pc, Some(reduced_amg_setup)))?;
+        call!(PCShellSetApply(pc, Some(reduced_amg_apply)))?;
+        call!(PCShellSetName(pc, REDUCED_AMG_NAME.as_ptr() as *const c_char))
+    }
+
+    /// Finds the coupled nodes of the preconditioning matrix, extracts their block (a new one
+    /// with its near-null space when they changed) and hands it to the multigrid.
+    fn setup(&mut self, pc: p::PC) -> Result<(), PetscError> {
+        let (mut a, mut pmat): (p::Mat, p::Mat) = (null_mut(), null_mut());
+        call!(PCGetOperators(pc, &mut a, &mut pmat))?;
+        if self.flags.is_null() {
+            call!(MatCreateVecs(pmat, &mut self.flags, &mut self.diag))?;
+        }
+        mark_coupled_rows(pmat, self.flags)?;
+        call!(MatGetDiagonal(pmat, self.diag))?;
+        let rows = self.coupled_nodes()?;
+        let changed = self.any_rank(rows != self.rows)?;
+        if changed || self.sub.is_null() {
+            self.new_block(pmat, rows)?;
+        } else {
+            call!(MatCreateSubMatrix(
+                pmat,
+                self.is,
+                self.is,
+                p::MAT_REUSE_MATRIX,
+                &mut self.sub
+            ))?;
+        }
+        call!(KSPSetOperators(self.ksp, self.sub, self.sub))?;
+        call!(KSPSetUp(self.ksp))?;
+        let mut inner: p::PC = null_mut();
+        let mut failed: p::PCFailedReason = 0;
+        call!(KSPGetPC(self.ksp, &mut inner))?;
+        call!(PCGetFailedReason(inner, &mut failed))?;
+        if failed != 0 {
+            call!(PCSetFailedReason(pc, p::PC_SUBPC_ERROR))?;
+        }
+        Ok(())
+    }
+
+    /// The owned rows of every node with a coupled DOF (all three of its DOFs), increasing.
+    fn coupled_nodes(&self) -> Result<Vec<i32>, PetscError> {
+        let (mut lo, mut n) = (0, 0);
+        call!(VecGetOwnershipRange(self.flags, &mut lo, &mut n))?;
+        call!(VecGetLocalSize(self.flags, &mut n))?;
+        let mut ptr: *const f64 = std::ptr::null();
+        call!(VecGetArrayRead(self.flags, &mut ptr))?;
+        // SAFETY: `n` readable entries until VecRestoreArrayRead (none when n = 0).
+        let f = if n == 0 {
+            &[][..]
+        } else {
+            unsafe { std::slice::from_raw_parts(ptr, n as usize) }
+        };
+        let rows: Vec<i32> = f
+            .chunks(3)
+            .enumerate()
+            .filter(|(_, node)| node.iter().any(|&m| m > 0.0))
+            .flat_map(|(k, _)| (0..3).map(move |c| lo + 3 * k as i32 + c))
+            .collect();
+        call!(VecRestoreArrayRead(self.flags, &mut ptr))?;
+        Ok(rows)
+    }
+
+    /// Whether `local` holds on any rank (collective).
+    fn any_rank(&self, local: bool) -> Result<bool, PetscError> {
+        let (mine, mut any) = (local as i32, 0i32);
+        // SAFETY: one int in and out on the solver's communicator, called on every rank.
+        let rc = unsafe {
+            mpi::ffi::MPI_Allreduce(
+                &mine as *const i32 as *const std::ffi::c_void,
+                &mut any as *mut i32 as *mut std::ffi::c_void,
+                1,
+                mpi::ffi::RSMPI_INT32_T,
+                mpi::ffi::RSMPI_MAX,
+                self.comm,
+            )
+        };
+        chk(rc, "MPI_Allreduce")?;
+        Ok(any != 0)
+    }
+
+    /// A new coupled block of `pmat` on `rows`, with the rigid-body modes of `pmat`'s
+    /// near-null space restricted to it and orthonormalized.
+    fn new_block(&mut self, pmat: p::Mat, rows: Vec<i32>) -> Result<(), PetscError> {
+        self.destroy_block();
+        let blocks: Vec<i32> = rows.iter().step_by(3).map(|&r| r / 3).collect();
+        call!(ISCreateBlock(
+            self.comm,
+            3,
+            blocks.len() as i32,
+            blocks.as_ptr(),
+            p::PETSC_COPY_VALUES,
+            &mut self.is
+        ))?;
+        self.rows = rows;
+        call!(MatCreateSubMatrix(
+            pmat,
+            self.is,
+            self.is,
+            p::MAT_INITIAL_MATRIX,
+            &mut self.sub
+        ))?;
+        let mut ns: p::MatNullSpace = null_mut();
+        call!(MatGetNearNullSpace(pmat, &mut ns))?;
+        if ns.is_null() {
+            return self.new_inner_solver(null_mut());
+        }
+        let mut sub_ns = self.restricted_null_space(ns, self.is)?;
+        let set = call!(MatSetNearNullSpace(self.sub, sub_ns));
+        let inner = set.and_then(|()| self.new_inner_solver(sub_ns));
+        // SAFETY: the matrix keeps its own reference.
+        unsafe { p::MatNullSpaceDestroy(&mut sub_ns) };
+        inner
+    }
+
+    /// A new inner solver for the coupled block: GAMG on the whole block, or, where the block
+    /// holds structure DOFs on some rank (and `-reduced_split` is not false), a multiplicative
+    /// field split with LU on the structure and GAMG on the fill, whose near-null space is
+    /// `sub_ns` restricted to it.
+    fn new_inner_solver(&mut self, sub_ns: p::MatNullSpace) -> Result<(), PetscError> {
+        // SAFETY: created here or null, destroyed once.
+        unsafe { p::KSPDestroy(&mut self.ksp) };
+        call!(KSPCreate(self.comm, &mut self.ksp))?;
+        let prefix = CString::new(PREFIX).expect("no NUL");
+        call!(KSPSetOptionsPrefix(self.ksp, prefix.as_ptr()))?;
+        call!(KSPSetType(self.ksp, p::KSPPREONLY.as_ptr() as *const c_char))?;
+        let mut pc: p::PC = null_mut();
+        call!(KSPGetPC(self.ksp, &mut pc))?;
+        let structure: Vec<usize> = (0..self.rows.len())
+            .step_by(3)
+            .filter(|&k| self.structure.binary_search(&self.rows[k]).is_ok())
+            .collect();
+        if self.any_rank(!structure.is_empty())? && split_wanted()? {
+            call!(PCSetType(pc, p::PCFIELDSPLIT.as_ptr() as *const c_char))?;
+            self.set_splits(pc, &structure, sub_ns)?;
+        } else {
+            call!(PCSetType(pc, p::PCGAMG.as_ptr() as *const c_char))?;
+        }
+        call!(KSPSetFromOptions(self.ksp))
+    }
+
+    /// The two splits of the coupled block: `structure` (local row positions of structure
+    /// nodes, first DOF each) and the fill (the other nodes), the latter with the near-null
+    /// space `sub_ns` restricted to it.
+    fn set_splits(
+        &mut self,
+        pc: p::PC,
+        structure: &[usize],
+        sub_ns: p::MatNullSpace,
+    ) -> Result<(), PetscError> {
+        let (mut lo, mut hi) = (0, 0);
+        call!(MatGetOwnershipRange(self.sub, &mut lo, &mut hi))?;
+        let is_structure: Vec<bool> = {
+            let mut m = vec![false; self.rows.len() / 3];
+            for &k in structure {
+                m[k / 3] = true;
+            }
+            m
+        };
+        let blocks = |want: bool| -> Vec<i32> {
+            (0..is_structure.len())
+                .filter(|&b| is_structure[b] == want)
+                .map(|b| lo / 3 + b as i32)
+                .collect()
+        };
+        for (name, want) in [("structure", true), ("fill", false)] {
+            let b = blocks(want);
+            let mut is: p::IS = null_mut();
+            call!(ISCreateBlock(
+                self.comm,
+                3,
+                b.len() as i32,
+                b.as_ptr(),
+                p::PETSC_COPY_VALUES,
+                &mut is
+            ))?;
+            let mut composed = Ok(());
+            if !want && !sub_ns.is_null() {
+                composed = self.compose_null_space(is, sub_ns);
+            }
+            let c_name = CString::new(name).expect("no NUL");
+            let set = composed.and_then(|()| call!(PCFieldSplitSetIS(pc, c_name.as_ptr(), is)));
+            // SAFETY: the field split keeps its own reference.
+            unsafe { p::ISDestroy(&mut is) };
+            set?;
+        }
+        Ok(())
+    }
+
+    /// Attaches `sub_ns` restricted to the rows `is` of the coupled block to `is`, where the
+    /// field split looks for its split's near-null space.
+    fn compose_null_space(&self, is: p::IS, sub_ns: p::MatNullSpace) -> Result<(), PetscError> {
+        let mut ns = self.restricted_null_space(sub_ns, is)?;
+        let key = CString::new("nearnullspace").expect("no NUL");
+        let r = call!(PetscObjectCompose(
+            is as p::PetscObject,
+            key.as_ptr(),
+            ns as p::PetscObject
+        ));
+        // SAFETY: the index set keeps its own reference.
+        unsafe { p::MatNullSpaceDestroy(&mut ns) };
+        r
+    }
+
+    /// The near-null space `ns` restricted to the rows `is` of its vectors.
+    fn restricted_null_space(&self, ns: p::MatNullSpace, is: p::IS) -> Result<p::MatNullSpace, PetscError> {
+        let modes = self.restricted_modes(ns, is)?;
+        let mut out: p::MatNullSpace = null_mut();
+        let made = call!(MatNullSpaceCreate(
+            self.comm,
+            p::PETSC_FALSE,
+            modes.len() as i32,
+            modes.as_ptr(),
+            &mut out
+        ));
+        // SAFETY: the null space keeps its own references to the vectors.
+        for mut v in modes {
+            unsafe { p::VecDestroy(&mut v) };
+        }
+        made.map(|()| out)
+    }
+
+    /// The vectors of `ns` on the coupled rows, orthonormalized by modified Gram–Schmidt
+    /// (a mode with nothing left is dropped).
+    fn restricted_modes(&self, ns: p::MatNullSpace, is: p::IS) -> Result<Vec<p::Vec>, PetscError> {
+        let (mut has_const, mut n, mut vecs) = (p::PETSC_FALSE, 0, std::ptr::null());
+        call!(MatNullSpaceGetVecs(ns, &mut has_const, &mut n, &mut vecs))?;
+        let mut modes: Vec<p::Vec> = Vec::new();
+        for k in 0..(n as usize).min(near_null_modes()?) {
+            // SAFETY: `n` vectors owned by the null space.
+            let v = unsafe { *vecs.add(k) };
+            let (mut view, mut copy): (p::Vec, p::Vec) = (null_mut(), null_mut());
+            call!(VecGetSubVector(v, is, &mut view))?;
+            call!(VecDuplicate(view, &mut copy))?;
+            call!(VecCopy(view, copy))?;
+            call!(VecRestoreSubVector(v, is, &mut view))?;
+            for &q in &modes {
+                let mut d = 0.0;
+                call!(VecDot(copy, q, &mut d))?;
+                call!(VecAXPY(copy, -d, q))?;
+            }
+            let mut norm = 0.0;
+            call!(VecNormalize(copy, &mut norm))?;
+            if norm > 1e-12 {
+                modes.push(copy);
+            } else {
+                // SAFETY: created by VecDuplicate above, destroyed once.
+                unsafe { p::VecDestroy(&mut copy) };
+            }
+        }
+        Ok(modes)
+    }
+
+    /// Destroys the coupled block and its index set (null handles are accepted).
+    fn destroy_block(&mut self) {
+        // SAFETY: handles created by this shell, destroyed once.
+        unsafe {
+            p::MatDestroy(&mut self.sub);
+            p::ISDestroy(&mut self.is);
+        }
+    }
+
+    /// y = P⁻¹ x: the decoupled rows by their diagonal, the coupled block by the multigrid.
+    fn apply(&mut self, pc: p::PC, x: p::Vec, y: p::Vec) -> Result<(), PetscError> {
+        call!(VecPointwiseDivide(y, x, self.diag))?;
+        let (mut xs, mut ys): (p::Vec, p::Vec) = (null_mut(), null_mut());
+        call!(VecGetSubVector(x, self.is, &mut xs))?;
+        call!(VecGetSubVector(y, self.is, &mut ys))?;
+        let solved = call!(KSPSolve(self.ksp, xs, ys));
+        call!(VecRestoreSubVector(x, self.is, &mut xs))?;
+        call!(VecRestoreSubVector(y, self.is, &mut ys))?;
+        solved?;
+        let mut reason = 0;
+        call!(KSPGetConvergedReason(self.ksp, &mut reason))?;
+        if reason < 0 {
+            call!(PCSetFailedReason(pc, p::PC_SUBPC_ERROR))?;
+        }
+        Ok(())
+    }
+}
+
+impl Drop for ReducedAmg {
+    fn drop(&mut self) {
+        self.destroy_block();
+        // SAFETY: handles created by this shell, destroyed once.
+        unsafe {
+            p::KSPDestroy(&mut self.ksp);
+            p::VecDestroy(&mut self.flags);
+            p::VecDestroy(&mut self.diag);
+        }
+    }
+}
+
+/// How many of the near-null space's vectors the multigrid gets (`-reduced_near_null_modes`;
+/// default the three translations, 6 adds the rotations; module docs).
+fn near_null_modes() -> Result<usize, PetscError> {
+    let (name, mut set, mut n) = (
+        CString::new("-reduced_near_null_modes").expect("no NUL"),
+        p::PETSC_FALSE,
+        3,
+    );
+    call!(PetscOptionsGetInt(
+        null_mut(),
+        std::ptr::null(),
+        name.as_ptr(),
+        &mut n,
+        &mut set
+    ))?;
+    Ok(n.max(0) as usize)
+}
+
+/// Whether the coupled block is split into structure and fill (`-reduced_split`, default
+/// true).
+fn split_wanted() -> Result<bool, PetscError> {
+    let (name, mut set, mut on) = (
+        CString::new("-reduced_split").expect("no NUL"),
+        p::PETSC_FALSE,
+        p::PETSC_TRUE,
+    );
+    call!(PetscOptionsGetBool(
+        null_mut(),
+        std::ptr::null(),
+        name.as_ptr(),
+        &mut on,
+        &mut set
+    ))?;
+    Ok(on == p::PETSC_TRUE)
+}
+
+/// The shell context of `pc`.
+///
+/// # Safety
+/// `pc` must be a shell installed by [`ReducedAmg::install`], whose context is alive.
+unsafe fn context<'a>(pc: p::PC) -> Result<&'a mut ReducedAmg, PetscError> {
+    let mut ctx: *mut std::ffi::c_void = null_mut();
+    call!(PCShellGetContext(
+        pc,
+        &mut ctx as *mut *mut std::ffi::c_void as *mut std::ffi::c_void
+    ))?;
+    // SAFETY: the context is the boxed ReducedAmg owned by the Snes (caller's contract).
+    Ok(unsafe { &mut *(ctx as *mut ReducedAmg) })
+}
+
+unsafe extern "C" fn reduced_amg_setup(pc: p::PC) -> p::PetscErrorCode {
+    // SAFETY: installed by ReducedAmg::install with its context.
+    match unsafe { context(pc) }.and_then(|amg| amg.setup(pc)) {
+        Ok(()) => 0,
+        Err(e) => e.code.max(CALLBACK_FAILED),
+    }
+}
+
+unsafe extern "C" fn reduced_amg_apply(pc: p::PC, x: p::Vec, y: p::Vec) -> p::PetscErrorCode {
+    // SAFETY: installed by ReducedAmg::install with its context.
+    match unsafe { context(pc) }.and_then(|amg| amg.apply(pc, x, y)) {
+        Ok(()) => 0,
+        Err(e) => e.code.max(CALLBACK_FAILED),
+    }
+}
