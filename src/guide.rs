@@ -73,7 +73,7 @@
 //! | `boundary` | `{ set, fix: [x, y, z], value }` on node sets (prescribed displacement, zero by default) |
 //! | `loads` | `gravity: { g }`, `pressure: [ { faces, value } ]`, `hydrostatic: [ { faces, level, unit_weight } ]` (γ_w 9810 N/m³ by default) |
 //! | `stages` | construction and loading stages in order: `{ name, activate: [blocks], loads, load_steps }`, plus `dynamic` ([dynamic stages](#dynamic-stages-and-earthquakes)) and `modal` ([modal analysis](#modal-analysis)); placed blocks start strain-free at zero stress. Without stages the scene is one stage (a `mesh.cfrd` scene runs the generator's schedule) |
-//! | `solver` | [`SolverSpec`](crate::scene::schema::SolverSpec): `rtol` (1e-10), `max_iterations` (2000), `newton_tol` (1e-8), `newton_max_iterations` (25), `load_steps` (1), `max_cutbacks` (8), `petsc_options`, `monitor`, `linear_solver` (`iterative`, `canonical_lu` or `distributed_lu`), `reuse_factorization` (true), `integration_tol_ratio` (0, off), `predictor` (`none`, or `extrapolate`: a static load step starts from the last step's rate du/dλ, [`crate::solver::integrator::QuasiStatic`]), `line_search` (`residual_secant`, `secant` or `full_step_first`, [`LineSearch`](crate::scene::schema::LineSearch)) |
+//! | `solver` | [`SolverSpec`](crate::scene::schema::SolverSpec): `rtol` (1e-10), `max_iterations` (2000), `newton_tol` (1e-8), `newton_max_iterations` (25), `load_steps` (1), `max_cutbacks` (8), `petsc_options`, `monitor`, `linear_solver` (`iterative`, `reduced_amg`, `canonical_lu` or `distributed_lu`), `reuse_factorization` (true), `integration_tol_ratio` (0, off), `predictor` (`none`, or `extrapolate`: a static load step starts from the last step's rate du/dλ, [`crate::solver::integrator::QuasiStatic`]), `line_search` (`residual_secant`, `secant` or `full_step_first`, [`LineSearch`](crate::scene::schema::LineSearch)) |
 //! | `output` | [`OutputSpec`](crate::scene::schema::OutputSpec): `dir` (`out`; `-o` overrides it), `placed_nodes` (`end_of_stage` or `start_of_stage`: where the displacement of a placed node counts from), `profiles` (the seed's Figs. 7–11, [`crate::profiles`], and after an earthquake Figs. 12–20, [`crate::quake_figures`]; `probes` name the elements followed), `checkpoint` (`stage`, `step` or `none`) |
 //!
 //! ### A seed scene
@@ -291,6 +291,15 @@
 //!   counts the factorizations. `-canonical_pc_factor_mat_solver_type mumps` factors with MUMPS
 //!   (faster from the medium mesh up, with the serial OpenBLAS that `ci/install-deps.sh`
 //!   installs).
+//! * `linear_solver: reduced_amg`: GMRES (CG for symmetric tangents) preconditioned on the
+//!   coupled rows only, the rows of unplaced nodes and constrained DOFs solved by their
+//!   diagonal. The interface, joint and slab nodes are factored (MUMPS over the ranks), the
+//!   fill gets algebraic multigrid (GAMG), one after the other ([`crate::linalg::reduced_amg`]).
+//!   Every rank holds only its share, so memory grows with the mesh and falls with the ranks:
+//!   on the medium seed mesh a third of the canonical LU's memory per rank, in slightly less
+//!   time ([`crate::performance`], "Linear solvers on the seed dam"). Set `rtol: 1.0e-7` with
+//!   it (the default 1e-10 is for linear scenes). Options take the prefix `reduced_`
+//!   (`-reduced_split false`, `-reduced_fieldsplit_fill_pc_type hypre`, ...).
 //! * `linear_solver: distributed_lu`: MUMPS's LU of the distributed matrix, factored by all
 //!   ranks together. Each rank holds only its share of the matrix and the factors, so a mesh
 //!   whose factors do not fit one rank's memory can use more ranks (or nodes). The factors are
@@ -356,7 +365,7 @@
 //! | `cfrd run ... --checkpoint stage\|step\|none` | overrides `output.checkpoint` without changing the scene (nor its hash) |
 //! | `cfrd run ... --monitor` | prints every Newton residual and cut-back, as `solver.monitor` does, without changing the scene |
 //! | `cfrd run ... --integration-tol-ratio R` | caps the GP substepping tolerance at R·newton_tol, as `solver.integration_tol_ratio` does, without changing the scene |
-//! | `cfrd run ... --linear-solver iterative\|canonical_lu\|distributed_lu` | solves with this linear solver instead of `solver.linear_solver`, without changing the scene: a long run continues from its checkpoint on another solver (its results then agree with the scene's to the solvers' tolerances, not bit for bit) |
+//! | `cfrd run ... --linear-solver iterative\|reduced_amg\|canonical_lu\|distributed_lu` | solves with this linear solver instead of `solver.linear_solver`, without changing the scene: a long run continues from its checkpoint on another solver (its results then agree with the scene's to the solvers' tolerances, not bit for bit) |
 //! | `cfrd run ... -q` | prints nothing but errors |
 //! | `cfrd run ... --overwrite` | writes into a directory that holds another run's `results.h5`, `checkpoint.h5` or `summary.json` (its old checkpoint is removed first); without it such a directory is refused (exit code 2) unless the run restarts from that directory's own checkpoint. Temporary files of killed runs found there (`.results.h5.partial-<pid>` and the like) are named and removed |
 //! | `cfrd check SCENE` | parses, validates and cross-checks the scene and its mesh without solving; prints the counts of nodes, elements, blocks, fixed DOFs and stages |

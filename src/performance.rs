@@ -359,6 +359,58 @@
 //!   largest values (`cfrd compare`; strain 1.7e-2, stress 1.2e-2), the GP path after the
 //!   Schwarz run's one cut-back. So it is no default for the seed scenes; whether it pays on
 //!   the fine mesh, where the whole block's factors take 10 GiB, was not run.
+//! * **Multigrid on the coupled rows, the structure split off** (`linear_solver: reduced_amg`,
+//!   [`crate::linalg::reduced_amg`]; issue 20). Why GAMG fails here, measured on the medium
+//!   hyperbolic scene on 2 ranks (build of d2432ba's tree): on the whole matrix it reports PC
+//!   failed in the first load step of `fill_001` (also with `-pc_gamg_threshold 0
+//!   -mg_coarse_sub_pc_type svd`); on the coupled rows only, in `fill_003`; with the
+//!   translations as near-null space it carries the construction but needs about 490 GMRES
+//!   iterations per solve at the impoundment (rtol 1e-10; BoomerAMG on the same block 293),
+//!   and the run did not reach `impound_2` in 30 min. Splitting the interface, joint and slab
+//!   nodes off and factoring them (MUMPS over the ranks) brought the impoundment to 40 GMRES
+//!   iterations per solve at rtol 1e-7. The whole medium hyperbolic scene then, 2 ranks, the
+//!   same build, alone on the machine, one run after the other (`/usr/bin/time -v mpirun -n 2
+//!   cfrd run inputs/scenes/seed_medium_hyperbolic.yaml -o OUT --stop-after-stage 18`, then
+//!   `--restart` from its checkpoint to the end; the first with `--linear-solver reduced_amg
+//!   -reduced_near_null_modes 3 -ksp_rtol 1e-7`, the scene's canonical LU the second;
+//!   `summary.json`):
+//!
+//!   | solver | stages | wall time | linear solves | Newton iterations | GMRES per Newton iteration | peak memory per rank |
+//!   |---|---|---|---|---|---|---|
+//!   | canonical LU (MUMPS on every rank) | 1–18 | 192.5 s | 82.5 s | 655 | 6.6 | 315 / 321 MiB |
+//!   | reduced multigrid, split | 1–18 | 190.7 s | 99.3 s | 652 | 24.7 | 171 / 176 MiB |
+//!   | canonical LU | 19–37 | 535.5 s | 366.9 s | 1,155 | 7.2 | 630 / 631 MiB |
+//!   | reduced multigrid, split | 19–37 | 486.2 s | 329.0 s | 1,157 | 31.8 | 217 / 226 MiB |
+//!
+//!   The whole run: 728.0 s against 676.9 s, 1.08 times faster, with 2.8 times less memory per
+//!   rank; no cut-backs in either. Per stage band (`stage_seconds` of `summary.json`, which
+//!   counts each stage's steps and iterations from this commit on), the fill stages after
+//!   slab stage I take the same time with both (19–24 s, 27–32 Newton iterations each), slab_2
+//!   18.8 s against 37.1 s, the four impoundment stages 30.5–42.0 s against 43.0–57.1 s. The
+//!   slab table of the central section agrees with the canonical LU's to 0.0006 MPa (σ_s),
+//!   0.0041 MPa (σ_a) and 0.0004 cm (`fig08_slab_stress.csv`; `cfrd accuracy`: 6.3e-5, 6.3e-4,
+//!   2.9e-5 and 1.0e-4 of the largest values), inside the issue's 0.02 MPa and 0.1 cm. Test:
+//!   `multigrid_on_the_coupled_rows_carries_the_staged_dam` (`tests/cfrd_dam.rs`; GP dam, 1
+//!   and 2 ranks against the canonical LU).
+//!
+//!   The fine hyperbolic scene's first 20 fill stages, the same way (the same build; the
+//!   reduced multigrid with `--linear-solver reduced_amg -ksp_rtol 1e-7`, default options
+//!   otherwise, then the scene's canonical LU; `--stop-after-stage 20`):
+//!
+//!   | solver | wall time | linear solves | Newton iterations | GMRES per Newton iteration | peak memory per rank |
+//!   |---|---|---|---|---|---|
+//!   | canonical LU | 876.2 s | 536.7 s | 759 | 6.2 | 1,558 / 1,567 MiB |
+//!   | reduced multigrid, split | 962.4 s | 635.6 s | 749 | 21.2 | 802 / 815 MiB |
+//!
+//!   1.10 times slower, with half the memory per rank. The stages grow at different rates:
+//!   fill_001 7.1 s against 5.1 s, fill_018 to fill_020 80–100 s with both. The multigrid's
+//!   GMRES iterations per Newton iteration grow as the fill rises: 6 in fill_001, 28 in
+//!   fill_020 (fine), and 9 in fill_001, 33 in fill_017 (medium). At a fifth of the dam's
+//!   height, medium fill_006 and fine fill_020, they are 23.2 and 27.7: 19 % more for 7.3
+//!   times the DOFs. Only the three translations are the near-null space, so the multigrid
+//!   does not see a tall body's bending, which is a likely cause. The rest of the fine run
+//!   (slab stages, impoundment), where the canonical LU's factors reach 10 GiB per rank, was
+//!   not run this time.
 //! * **Parallel efficiency on the medium mesh** (issue 20, acceptance 2; the same build and
 //!   scene as the table above, canonical LU, `/usr/bin/time -v mpirun -n 1 cfrd run …` alone
 //!   on the machine right after the 2-rank runs; `phase_seconds` of `summary.json`):
@@ -437,9 +489,12 @@
 //! do not split: the distributed LU splits the memory (a third less per rank on 2 ranks,
 //! "Distributed LU with reused factors" above) but on 2 ranks took 1.24 times as long, and
 //! how MUMPS's parallel factorization of these blocks scales beyond 2 ranks was not measured
-//! (`scripts/solver_choice.sh RUNS P SCENE` measures it on a cluster); (2) no iterative
-//! preconditioner carries the staged dam (GAMG fails, BoomerAMG is 8 times slower than the
-//! LU on the fine mesh's first fill stages, "Linear solvers on the seed dam"), and it is the
+//! (`scripts/solver_choice.sh RUNS P SCENE` measures it on a cluster); (2) GAMG on the whole
+//! matrix fails, but with the decoupled rows taken out and the slab, interfaces and joints
+//! factored apart (`reduced_amg`, "Linear solvers on the seed dam") it carries the medium
+//! dam in the canonical LU's time with a third of its memory per rank; its structure split
+//! is still a direct factorization, which grows with the slab's area, and its GMRES
+//! iterations grow with the height of the fill (measured up to fine fill_020); it is the
 //! only kind that would scale in both work and memory; (3) only after those, the medium mesh's
 //! partition surfaces (more ghost than owned nodes from 32 ranks on). The global mesh on every
 //! rank and METIS on rank 0 cost seconds and tens of MB at the fine size.

@@ -393,8 +393,11 @@ pub enum LinearSolver {
     /// its share of the factors (for meshes whose factors do not fit one rank); results agree
     /// between rank counts to rounding.
     DistributedLu,
-    /// Krylov as `iterative`, with algebraic multigrid on the coupled rows only (the nodes of
-    /// fill not yet placed and the constrained DOFs taken out; [`crate::linalg::reduced_amg`]).
+    /// Krylov as `iterative`, preconditioned on the coupled rows only (the nodes of fill not
+    /// yet placed and the constrained DOFs taken out): LU of the interface, joint and slab
+    /// nodes, algebraic multigrid on the fill, in a block Gauss–Seidel split
+    /// ([`crate::linalg::reduced_amg`]). Each rank holds its share of the matrix, the
+    /// multigrid and the factors; results agree between rank counts to the linear tolerance.
     ReducedAmg,
 }
 
