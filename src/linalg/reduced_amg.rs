@@ -68,8 +68,9 @@ pub struct ReducedAmg {
 }
 
 impl ReducedAmg {
-    /// The shell's state on communicator `comm`; `symmetric` keeps GAMG's Chebyshev smoothers,
-    /// otherwise the levels are smoothed by Richardson + SOR (see `configure_ksp`);
+    /// The shell's state on communicator `comm`; `symmetric` (CG outside) keeps GAMG's
+    /// Chebyshev smoothers and sweeps the split forth and back, otherwise the levels are
+    /// smoothed by Richardson + SOR (see `configure_ksp`);
     /// `structure`: this rank's DOFs of the stiff structure (global indices, increasing), the
     /// split factored apart from the fill.
     pub fn new(
@@ -77,7 +78,13 @@ impl ReducedAmg {
         symmetric: bool,
         structure: Vec<i32>,
     ) -> Result<Box<ReducedAmg>, PetscError> {
-        if !symmetric {
+        if symmetric {
+            // CG needs a symmetric preconditioner: the split's sweep forth and back
+            default_option(
+                &format!("-{PREFIX}pc_fieldsplit_type"),
+                "symmetric_multiplicative",
+            )?;
+        } else {
             for level in ["", "fieldsplit_fill_"] {
                 default_option(&format!("-{PREFIX}{level}mg_levels_ksp_type"), "richardson")?;
                 default_option(&format!("-{PREFIX}{level}mg_levels_pc_type"), "sor")?;
