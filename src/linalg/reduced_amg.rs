@@ -17,10 +17,11 @@
 //! - the decoupled rows by their diagonal, y_i = x_i / a_ii;
 //! - the coupled nodes (a node with any coupled DOF keeps all three, so the block has block
 //!   size 3) as one block, extracted from the preconditioning matrix at every Jacobian;
-//! - on that block a multiplicative field split (block Gauss–Seidel): the **structure** (the
-//!   nodes of zero-thickness elements, both faces, and of the blocks with incompatible modes,
-//!   i.e. the face slab; [`ReducedAmg::new`]'s `structure`) by a complete LU (MUMPS over the
-//!   ranks), the **fill** by GAMG with the rigid-body translations as near-null space.
+//! - on that block a multiplicative field split (block Gauss–Seidel, swept forth and back
+//!   under CG): the **structure** (the nodes of zero-thickness elements, both faces, and of
+//!   the blocks with incompatible modes, i.e. the face slab; [`ReducedAmg::new`]'s
+//!   `structure`) by a complete LU (MUMPS over the ranks), the **fill** by GAMG with the
+//!   rigid-body translations as near-null space.
 //!
 //! Options take the prefix `reduced_`: `-reduced_split false` drops the split (GAMG on the
 //! whole block), `-reduced_near_null_modes 6` gives GAMG the rotations too (the default is 3:
