@@ -366,7 +366,8 @@
 //!   -mg_coarse_sub_pc_type svd`); on the coupled rows only, in `fill_003`; with the
 //!   translations as near-null space it carries the construction but needs about 490 GMRES
 //!   iterations per solve at the impoundment (rtol 1e-10; BoomerAMG on the same block 293),
-//!   and the run did not reach `impound_2` in 30 min. Splitting the interface, joint and slab
+//!   and its stages 19 to 37, restarted after slab stage I, were cut off by a 30-min limit in
+//!   `impound_2` (the LU runs all of them in 9 min). Splitting the interface, joint and slab
 //!   nodes off and factoring them (MUMPS over the ranks) brought the impoundment to 40 GMRES
 //!   iterations per solve at rtol 1e-7. The whole medium hyperbolic scene then, 2 ranks, the
 //!   same build, alone on the machine, one run after the other (`/usr/bin/time -v mpirun -n 2
