@@ -809,7 +809,8 @@ pub enum LineSearch {
 pub enum LinearMethod {
     /// cfrd's Krylov defaults (see `configure_ksp`): CG or GMRES with GAMG.
     Krylov,
-    /// The same Krylov method with GAMG on the coupled rows only ([`ReducedAmg`]).
+    /// The same Krylov method preconditioned on the coupled rows only: LU of the structure,
+    /// GAMG on the fill ([`ReducedAmg`]).
     ReducedAmg {
         /// The owned DOFs of the stiff structure (slab, interfaces, joints), increasing: the
         /// split factored apart from the fill.
