@@ -380,8 +380,8 @@
 //!   |---|---|---|---|---|---|---|
 //!   | canonical LU (MUMPS on every rank) | 1–18 | 192.5 s | 82.5 s | 655 | 6.6 | 315 / 321 MiB |
 //!   | reduced multigrid, split | 1–18 | 190.7 s | 99.3 s | 652 | 24.7 | 171 / 176 MiB |
-//!   | canonical LU | 19–37 | 535.5 s | 366.9 s | 1,155 | 7.2 | 630 / 631 MiB |
-//!   | reduced multigrid, split | 19–37 | 486.2 s | 329.0 s | 1,157 | 31.8 | 217 / 226 MiB |
+//!   | canonical LU | 19–37 | 535.5 s | 366.9 s | 500 | 8.1 | 630 / 631 MiB |
+//!   | reduced multigrid, split | 19–37 | 486.2 s | 329.0 s | 505 | 40.9 | 217 / 226 MiB |
 //!
 //!   The whole run: 728.0 s against 676.9 s, 1.08 times faster, with 2.8 times less memory per
 //!   rank; no cut-backs in either. Per stage band (`stage_seconds` of `summary.json`, which

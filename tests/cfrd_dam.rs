@@ -403,15 +403,17 @@ fn write_gp_dam_variants(dir: &Path, variants: &[(&str, &str, f64)]) {
 /// `linear_solver: reduced_amg` (issue 20: multigrid on the coupled rows, the interfaces and
 /// joints split off and factored) on the GP dam through construction and impoundment: it
 /// carries every stage with at most 10 % more Newton iterations than the canonical LU (its
-/// corrections are as good as exact ones), and its results on 1 and 2 ranks differ from the
+/// inexact corrections cost Newton no more), and its results on 1 and 2 ranks differ from the
 /// canonical LU's by no more than the Newton tolerance itself moves them (a 10 times tighter
-/// tolerance gives that measure). Where GAMG on the whole matrix fails, the medium seed mesh,
-/// is measured in `cfrd::performance` (too long for a test).
+/// tolerance gives that measure), although its corrections are solved only to Eisenstat–Walker
+/// forcing terms and its preconditioner is kept across Jacobians: it is built fewer times than
+/// there are Newton iterations. Where GAMG on the whole matrix fails, the medium seed mesh, is
+/// measured in `cfrd::performance` (too long for a test).
 #[test]
 fn multigrid_on_the_coupled_rows_carries_the_staged_dam() {
     let dir = tempdir();
     let d = dir.path();
-    let amg = "linear_solver: reduced_amg, rtol: 1.0e-7";
+    let amg = "linear_solver: reduced_amg";
     run_gp_dam_variants(
         d,
         &[("lu", "", 1e-5), ("amg", amg, 1e-5), ("tight", "", 1e-6)],
@@ -435,6 +437,9 @@ fn multigrid_on_the_coupled_rows_carries_the_staged_dam() {
             newton(out),
             newton("lu")
         );
+        let builds = summary_count(&d.join(out), "factorizations");
+        println!("preconditioners built: {out} {builds}");
+        assert!(builds > 0 && builds < newton(out), "{out}: {builds} builds");
     }
     let tolerance = displacement_difference(d, "tight", "lu");
     for out in ["amg", "amg_1"] {
@@ -449,8 +454,12 @@ fn multigrid_on_the_coupled_rows_carries_the_staged_dam() {
 
 /// `linear_solver: reduced_amg` where every tangent is symmetric (the embedded default dam
 /// with elastic rockfill and the hyperbolic interface): CG outside, so the split is swept
-/// forth and back (symmetric multiplicative); the results on 2 ranks agree with the canonical
-/// LU's to 1e-6 of each field's largest value (measured: 4.6e-9).
+/// forth and back (symmetric multiplicative); with its corrections solved to 1e-8 (no
+/// inexact Newton) the results on 2 ranks agree with the canonical LU's to 1e-6 of each
+/// field's largest value (measured: 4.6e-9). With the default inexact Newton they agree to
+/// the Newton tolerance only (the hyperbolic interface's loading and unloading branches
+/// switch at other iterates: 1.6e-3 of the interface tractions in `fill_003`), which the GP
+/// dam's test above bounds.
 #[test]
 fn multigrid_on_the_coupled_rows_serves_cg_on_a_symmetric_dam() {
     let dir = tempdir();
@@ -477,6 +486,8 @@ fn multigrid_on_the_coupled_rows_serves_cg_on_a_symmetric_dam() {
             name,
             "-ksp_rtol",
             "1e-8",
+            "-snes_ksp_ew",
+            "false",
             "-ksp_view",
         ];
         let o = cfrd_mpi(2, d, &args);

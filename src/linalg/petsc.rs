@@ -724,6 +724,14 @@ fn configure_ksp(ksp: p::KSP, rtol: f64, max_it: u32, symmetric: bool) -> Result
     call!(KSPSetNormType(ksp, p::KSP_NORM_UNPRECONDITIONED))
 }
 
+/// The reduced multigrid's inexact-Newton defaults (`cfrd::linalg::reduced_amg`, "Inexact
+/// Newton"): PETSc's Eisenstat–Walker forcing terms, none looser than 0.01.
+const EISENSTAT_WALKER: [(&str, &str); 3] = [
+    ("-snes_ksp_ew", "true"),
+    ("-snes_ksp_ew_rtol0", "0.01"),
+    ("-snes_ksp_ew_rtolmax", "0.01"),
+];
+
 /// What a nonlinear problem gives PETSc's SNES: the residual F(x), the Jacobian J(x) and the
 /// convergence test. Every method is called collectively (on all ranks, in the same order).
 pub trait SnesProblem {
@@ -921,6 +929,11 @@ impl Snes {
         let (max_it, rtol, ksp_max_it, symmetric) = self.settings;
         if let LinearMethod::ReducedAmg { structure } = &self.method {
             self.reduced_amg = Some(ReducedAmg::new(self.comm, symmetric, structure.clone())?);
+            // inexact Newton (Eisenstat–Walker, reduced_amg module docs): a correction is
+            // solved to 0.01, or as much more tightly as Newton converges fast
+            for (name, value) in EISENSTAT_WALKER {
+                default_option(name, value)?;
+            }
         }
         let s = &*self;
         call!(SNESSetType(s.raw, p::SNESNEWTONLS.as_ptr() as *const c_char))?;
@@ -965,7 +978,8 @@ impl Snes {
             .distributed_lu
             .as_mut()
             .map_or(0, |lu| lu.take_factorizations());
-        std::mem::take(&mut self.factorizations) + canonical + distributed
+        let reduced = self.reduced_amg.as_mut().map_or(0, |amg| amg.take_builds());
+        std::mem::take(&mut self.factorizations) + canonical + distributed + reduced
     }
 
     /// Solves F(x) = 0 from the initial guess in `x`, with `r` as the residual work vector.

@@ -24,6 +24,44 @@
 //!   `structure`) by a complete LU (MUMPS over the ranks), the **fill** by GAMG with the
 //!   rigid-body translations as near-null space.
 //!
+//! **Lagged.** Building the block's preconditioner (extracting the block, factoring the
+//! structure, setting the multigrid up) costs as much as several GMRES iterations: on the
+//! medium seed mesh's `impound_2` (runs below) 44 builds and 193 GMRES iterations took 10.6 s
+//! of linear solves, 11 builds and 345 iterations 7.8 s, some 0.15 s a build and 0.02 s an
+//! iteration. Within a stage (the solver is made afresh at
+//! every stage) the preconditioner of an earlier Jacobian is kept while the solves need at
+//! most [`REFRESH_AFTER`] Krylov iterations (`-reduced_refresh_after N`; 0 builds it at every
+//! Jacobian), and built afresh at the Jacobian after a solve that needed more, or at once when
+//! the coupled nodes change. The run summary counts the builds as `factorizations`.
+//!
+//! **Inexact Newton.** With this solver the Newton corrections are solved only as tightly as
+//! Newton's own convergence needs (Eisenstat–Walker forcing terms, PETSc's `-snes_ksp_ew`;
+//! the scene's `rtol` is then not used): to a relative 0.01, or more tightly where PETSc's
+//! default rule asks for it as Newton converges (`-snes_ksp_ew_rtol0`, `-snes_ksp_ew_rtolmax`;
+//! `-snes_ksp_ew false` solves to `rtol`). Looser forcing terms save GMRES iterations but cost
+//! Newton iterations, i.e. assemblies, which cost more than the solves once these are cheap.
+//! Measured on the medium hyperbolic scene, 2 ranks, restarted from the checkpoint after slab
+//! stage I (`cfrd run inputs/scenes/seed_medium_hyperbolic.yaml --restart CK
+//! --stop-after-stage 19 --linear-solver reduced_amg`, one run each, the same build, alone on
+//! the machine; `stage_seconds` of `summary.json`; single runs, whose assembly time alone
+//! varied by up to 40 % between runs of the same Newton iterations):
+//!
+//! | `fill_018` | wall time | Newton iterations | GMRES iterations | preconditioners built |
+//! |---|---|---|---|---|
+//! | exact corrections (rtol 1e-7), built every Jacobian | 23.5 s | 30 | 1,007 | 30 |
+//! | PETSc's forcing terms (0.3, at most 0.9), built every Jacobian | 14.9 s | 40 | 229 | 40 |
+//! | PETSc's forcing terms, lagged (20) | 12.4 s | 40 | 311 | 1 |
+//! | forcing terms 0.05, at most 0.1, lagged (20) | 10.6 s | 30 | 325 | 1 |
+//! | forcing terms at most 0.01, lagged (20): the defaults | 13.8 s | 31 | 390 | 2 |
+//!
+//! On `impound_2` (restarted after `impound_1`): 40.8 s, 31 Newton and 1,243 GMRES iterations
+//! with exact corrections; 19.5 s, 37 and 446 with 0.05 / 0.1 (6 builds); 20.6 s, 31 and 515
+//! with the defaults (8 builds). With PETSc's forcing terms, building at every Jacobian took
+//! 24.2 s (44 builds), lagged after 12 iterations 20.9 s (11), after 20 19.9 s (3), after 40
+//! 27.6 s (1 build, 684 GMRES iterations). The defaults keep Newton's iterations those of exact
+//! corrections: on the small GP dam of `tests/cfrd_dam.rs` (2 ranks) 265 against the
+//! canonical LU's 260, where 0.05 / 0.1 took 296.
+//!
 //! Options take the prefix `reduced_`: `-reduced_split false` drops the split (GAMG on the
 //! whole block), `-reduced_near_null_modes 6` gives GAMG the rotations too (the default is 3:
 //! with all six the fill's GAMG reports PC failed at the medium mesh's impoundment, and the
@@ -67,7 +105,18 @@ pub struct ReducedAmg {
     diag: p::Vec,
     /// The owned DOFs of the stiff structure (slab, interfaces, joints), increasing.
     structure: Vec<i32>,
+    /// Applications since the last Jacobian: the last solve's Krylov iterations (plus one).
+    applies: u32,
+    /// Build the block's preconditioner afresh at the next Jacobian once a solve needed more
+    /// applications than this (`-reduced_refresh_after`, [`REFRESH_AFTER`]).
+    refresh_after: u32,
+    /// Preconditioners built (structure factored, multigrid set up) and not yet counted.
+    builds: u64,
 }
+
+/// The preconditioner of an earlier Jacobian of the stage is kept while the solves it serves
+/// need at most this many Krylov iterations (module docs, "Lagged").
+const REFRESH_AFTER: u32 = 20;
 
 impl ReducedAmg {
     /// The shell's state on communicator `comm`; `symmetric` (CG outside) keeps GAMG's
@@ -107,6 +156,9 @@ impl ReducedAmg {
             flags: null_mut(),
             diag: null_mut(),
             structure,
+            applies: 0,
+            refresh_after: int_option("-reduced_refresh_after", REFRESH_AFTER as i32)?.max(0) as u32,
+            builds: 0,
         }))
     }
 
@@ -120,8 +172,10 @@ impl ReducedAmg {
         call!(PCShellSetName(pc, REDUCED_AMG_NAME.as_ptr() as *const c_char))
     }
 
-    /// Finds the coupled nodes of the preconditioning matrix, extracts their block (a new one
-    /// with its near-null space when they changed) and hands it to the multigrid.
+    /// Finds the coupled nodes of the preconditioning matrix and, when they changed or the last
+    /// solve needed more than `refresh_after` applications, extracts their block (a new one
+    /// with its near-null space when they changed) and builds its preconditioner; otherwise the
+    /// earlier one stays (module docs, "Lagged").
     fn setup(&mut self, pc: p::PC) -> Result<(), PetscError> {
         let (mut a, mut pmat): (p::Mat, p::Mat) = (null_mut(), null_mut());
         call!(PCGetOperators(pc, &mut a, &mut pmat))?;
@@ -132,9 +186,10 @@ impl ReducedAmg {
         call!(MatGetDiagonal(pmat, self.diag))?;
         let rows = self.coupled_nodes()?;
         let changed = self.any_rank(rows != self.rows)?;
+        let stale = std::mem::take(&mut self.applies) > self.refresh_after;
         if changed || self.sub.is_null() {
             self.new_block(pmat, rows)?;
-        } else {
+        } else if stale {
             call!(MatCreateSubMatrix(
                 pmat,
                 self.is,
@@ -142,7 +197,16 @@ impl ReducedAmg {
                 p::MAT_REUSE_MATRIX,
                 &mut self.sub
             ))?;
+        } else {
+            return Ok(());
         }
+        self.build(pc)
+    }
+
+    /// Builds the inner solver's preconditioner on the current block; a failure of the
+    /// multigrid or the factorization is `pc`'s.
+    fn build(&mut self, pc: p::PC) -> Result<(), PetscError> {
+        self.builds += 1;
         call!(KSPSetOperators(self.ksp, self.sub, self.sub))?;
         call!(KSPSetUp(self.ksp))?;
         let mut inner: p::PC = null_mut();
@@ -153,6 +217,11 @@ impl ReducedAmg {
             call!(PCSetFailedReason(pc, p::PC_SUBPC_ERROR))?;
         }
         Ok(())
+    }
+
+    /// Preconditioners built since the last call (each factors the structure).
+    pub fn take_builds(&mut self) -> u64 {
+        std::mem::take(&mut self.builds)
     }
 
     /// The owned rows of every node with a coupled DOF (all three of its DOFs), increasing.
@@ -379,6 +448,7 @@ impl ReducedAmg {
 
     /// y = P⁻¹ x: the decoupled rows by their diagonal, the coupled block by the multigrid.
     fn apply(&mut self, pc: p::PC, x: p::Vec, y: p::Vec) -> Result<(), PetscError> {
+        self.applies += 1;
         call!(VecPointwiseDivide(y, x, self.diag))?;
         let (mut xs, mut ys): (p::Vec, p::Vec) = (null_mut(), null_mut());
         call!(VecGetSubVector(x, self.is, &mut xs))?;
@@ -411,11 +481,12 @@ impl Drop for ReducedAmg {
 /// How many of the near-null space's vectors the multigrid gets (`-reduced_near_null_modes`;
 /// default the three translations, 6 adds the rotations; module docs).
 fn near_null_modes() -> Result<usize, PetscError> {
-    let (name, mut set, mut n) = (
-        CString::new("-reduced_near_null_modes").expect("no NUL"),
-        p::PETSC_FALSE,
-        3,
-    );
+    Ok(int_option("-reduced_near_null_modes", 3)?.max(0) as usize)
+}
+
+/// The integer option `name`, or `default` when it is not set.
+fn int_option(name: &str, default: i32) -> Result<i32, PetscError> {
+    let (name, mut set, mut n) = (CString::new(name).expect("no NUL"), p::PETSC_FALSE, default);
     call!(PetscOptionsGetInt(
         null_mut(),
         std::ptr::null(),
@@ -423,7 +494,7 @@ fn near_null_modes() -> Result<usize, PetscError> {
         &mut n,
         &mut set
     ))?;
-    Ok(n.max(0) as usize)
+    Ok(n)
 }
 
 /// Whether the coupled block is split into structure and fill (`-reduced_split`, default

@@ -27,7 +27,8 @@ pub struct SolveReport {
     pub cutbacks: u32,
     /// Newton iterations of each converged step.
     pub newton_per_step: Vec<u32>,
-    /// Numeric factorizations of the canonical direct solver.
+    /// Numeric factorizations of the direct solvers (the reduced multigrid: preconditioners
+    /// built, each factoring the structure).
     #[serde(default)]
     pub factorizations: u64,
     /// Wall-clock seconds of each completed stage, for the run summary.
