@@ -30,7 +30,7 @@
 //! of linear solves, 11 builds and 345 iterations 7.8 s, some 0.15 s a build and 0.02 s an
 //! iteration. Within a stage (the solver is made afresh at
 //! every stage) the preconditioner of an earlier Jacobian is kept while the solves need at
-//! most [`REFRESH_AFTER`] Krylov iterations (`-reduced_refresh_after N`; 0 builds it at every
+//! most 20 Krylov iterations (`-reduced_refresh_after N`; 0 builds it at every
 //! Jacobian), and built afresh at the Jacobian after a solve that needed more, or at once when
 //! the coupled nodes change. The run summary counts the builds as `factorizations`.
 //!
