@@ -442,9 +442,30 @@
 //!   fill_020 (fine), and 9 in fill_001, 33 in fill_017 (medium). At a fifth of the dam's
 //!   height, medium fill_006 and fine fill_020, they are 23.2 and 27.7: 19 % more for 7.3
 //!   times the DOFs. Only the three translations are the near-null space, so the multigrid
-//!   does not see a tall body's bending, which is a likely cause. The rest of the fine run
-//!   (slab stages, impoundment), where the canonical LU's factors reach 10 GiB per rank, was
-//!   not run this time.
+//!   does not see a tall body's bending, which is a likely cause.
+//!
+//!   **The fine run past slab stage I** with the inexact Newton and the lagged preconditioner
+//!   (build of 0b1d7ee, whose code is 1c06cd8's): `/usr/bin/time -v mpirun -n 2 cfrd run
+//!   inputs/scenes/seed_fine_hyperbolic.yaml -o OUT --restart CK --linear-solver reduced_amg`
+//!   from the checkpoint after `fill_020` of the run above, alone on the machine, stopped by
+//!   hand in `fill_063` (stage 64 of 95). Stage times from the progress lines (1 s
+//!   resolution), memory from `ps` while it ran:
+//!
+//!   | stages | wall time | per stage | cut-backs | resident memory per rank |
+//!   |---|---|---|---|---|
+//!   | fill_021–fill_047 | 1,956 s | 44–178 s | 8 (fill_026–fill_028) | 0.81–0.83 GiB at fill_032, 0.85–0.86 GiB at fill_041 |
+//!   | fill_048–fill_050 | 222 s | 71–76 s | 0 | 0.90–0.92 GiB at fill_049 |
+//!   | slab_1 | 50 s | | 0 | |
+//!   | fill_051–fill_062 | 1,134 s | 81–110 s | 0 | 1.02 GiB at fill_063 |
+//!
+//!   For context only (another build, another day, not side by side): the canonical LU's run of
+//!   commit 6549cb1 ("The fine run") took 52.7 min for fill_021 to fill_047 with 3.4 GiB per
+//!   rank, 311 s for slab_1 and 200–370 s per stage for the ten after it, and held 5.6 GB after
+//!   slab_1. Here the whole of stages 21–63 took 56 min at about 1 GiB per rank: slab stage I
+//!   no longer changes the cost of a stage much. The eight cut-backs (3, 4 and 1 in fill_026,
+//!   fill_027 and fill_028, which took 154, 178 and 88 s against 58–73 s for their
+//!   neighbours) are more than the canonical LU's whole run had (3); why, was not yet traced. The rest of the run (fill_063 to the
+//!   impoundment, with slab stage II, the hard case) was not run.
 //! * **Parallel efficiency on the medium mesh** (issue 20, acceptance 2; the same build and
 //!   scene as the table above, canonical LU, `/usr/bin/time -v mpirun -n 1 cfrd run …` alone
 //!   on the machine right after the 2-rank runs; `phase_seconds` of `summary.json`):
