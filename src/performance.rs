@@ -464,7 +464,13 @@
 //!   slab_1. Here the whole of stages 21–63 took 56 min at about 1 GiB per rank: slab stage I
 //!   no longer changes the cost of a stage much. The eight cut-backs (3, 4 and 1 in fill_026,
 //!   fill_027 and fill_028, which took 154, 178 and 88 s against 58–73 s for their
-//!   neighbours) are more than the canonical LU's whole run had (3); why, was not yet traced. The rest of the run (fill_063 to the
+//!   neighbours) are more than the canonical LU's whole run had (3). The same restart with
+//!   `--monitor --stop-after-stage 27` repeats them and gives the reason: in the step to
+//!   λ = 0.375 of fill_026 the relative residual falls to 1.8e-5 in five iterations and then
+//!   stays between 2.1e-5 and 3.1e-5 for ten more (GMRES takes 4–5 iterations each), the
+//!   stall at the GP integration noise of "Newton iterations, load steps and the integration
+//!   noise" (STOL 1e-4 above `newton_tol` 1e-5), which cfrd's own message names; whether the
+//!   inexact corrections make it likelier than the LU's exact ones was not measured. The rest of the run (fill_063 to the
 //!   impoundment, with slab stage II, the hard case) was not run.
 //! * **Parallel efficiency on the medium mesh** (issue 20, acceptance 2; the same build and
 //!   scene as the table above, canonical LU, `/usr/bin/time -v mpirun -n 1 cfrd run …` alone
