@@ -31,8 +31,8 @@
 //! iteration. Within a stage (the solver is made afresh at
 //! every stage) the preconditioner of an earlier Jacobian is kept while the solves need at
 //! most 20 Krylov iterations (`-reduced_refresh_after N`; 0 builds it at every
-//! Jacobian), and built afresh at the Jacobian after a solve that needed more, or at once when
-//! the coupled nodes change. The run summary counts the builds as `factorizations`.
+//! Jacobian), and built afresh at the Jacobian after a solve that needed more or whose
+//! preconditioner failed, or at once when the coupled nodes change. The run summary counts the builds as `factorizations`.
 //!
 //! **Inexact Newton.** With this solver the Newton corrections are solved only as tightly as
 //! Newton's own convergence needs (Eisenstat–Walker forcing terms, PETSc's `-snes_ksp_ew`;
@@ -112,6 +112,8 @@ pub struct ReducedAmg {
     refresh_after: u32,
     /// Preconditioners built (structure factored, multigrid set up) and not yet counted.
     builds: u64,
+    /// The last build or application failed: the next Jacobian builds afresh.
+    failed: bool,
 }
 
 /// The preconditioner of an earlier Jacobian of the stage is kept while the solves it serves
@@ -159,6 +161,7 @@ impl ReducedAmg {
             applies: 0,
             refresh_after: int_option("-reduced_refresh_after", REFRESH_AFTER as i32)?.max(0) as u32,
             builds: 0,
+            failed: false,
         }))
     }
 
@@ -186,7 +189,8 @@ impl ReducedAmg {
         call!(MatGetDiagonal(pmat, self.diag))?;
         let rows = self.coupled_nodes()?;
         let changed = self.any_rank(rows != self.rows)?;
-        let stale = std::mem::take(&mut self.applies) > self.refresh_after;
+        let stale =
+            std::mem::take(&mut self.applies) > self.refresh_after || std::mem::take(&mut self.failed);
         if changed || self.sub.is_null() {
             self.new_block(pmat, rows)?;
         } else if stale {
@@ -214,6 +218,7 @@ impl ReducedAmg {
         call!(KSPGetPC(self.ksp, &mut inner))?;
         call!(PCGetFailedReason(inner, &mut failed))?;
         if failed != 0 {
+            self.failed = true;
             call!(PCSetFailedReason(pc, p::PC_SUBPC_ERROR))?;
         }
         Ok(())
@@ -460,6 +465,7 @@ impl ReducedAmg {
         let mut reason = 0;
         call!(KSPGetConvergedReason(self.ksp, &mut reason))?;
         if reason < 0 {
+            self.failed = true;
             call!(PCSetFailedReason(pc, p::PC_SUBPC_ERROR))?;
         }
         Ok(())
