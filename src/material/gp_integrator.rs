@@ -293,6 +293,40 @@ pub trait GpModelFunctions<const N: usize, const K: usize> {
         Ok((classify_indicator(c, tol_n), c))
     }
 
+    /// [`begin_substep`](Self::begin_substep) together with the plastic data of the branch it
+    /// decides, at the (possibly updated) point: for a model whose loading indicator and
+    /// plastic data share their costly part (the rockfill's invariants and Lode angle), one
+    /// evaluation instead of two. The data, when given, must be bitwise what
+    /// [`plastic_data`](Self::plastic_data) returns there (its error included); `None`, the
+    /// default, lets the first Euler stage call `plastic_data` itself.
+    #[allow(clippy::type_complexity)]
+    fn begin_substep_with_data(
+        &self,
+        point: &mut GpPoint<N, K, Self::Memory>,
+        d_eps: &SVector<f64, N>,
+        d_sig_e: &SVector<f64, N>,
+        tol_n: f64,
+    ) -> Result<(Branch, f64, Option<Result<PlasticData<N>, MaterialError>>), MaterialError> {
+        let (branch, c) = self.begin_substep(point, d_eps, d_sig_e, tol_n)?;
+        Ok((branch, c, None))
+    }
+
+    /// [`loading_indicator`](Self::loading_indicator) at `point` together with the plastic
+    /// data of `branch` there (none for [`Branch::Elastic`]), under the same contract as
+    /// [`begin_substep_with_data`](Self::begin_substep_with_data): the integrator calls it at
+    /// the Euler-predicted point, whose second stage then needs that data.
+    #[allow(clippy::type_complexity)]
+    fn indicator_with_data(
+        &self,
+        point: &GpPoint<N, K, Self::Memory>,
+        d_eps: &SVector<f64, N>,
+        d_sig_e: &SVector<f64, N>,
+        branch: Branch,
+    ) -> Result<(f64, Option<Result<PlasticData<N>, MaterialError>>), MaterialError> {
+        let _ = branch;
+        Ok((self.loading_indicator(point, d_eps, d_sig_e)?, None))
+    }
+
     /// Increment of the rate-integrated internal variables κ in one Euler stage (spec (R17),
     /// (I20), (I21)). Called for elastic stages too (with `plastic = None`, `d_lambda = 0`),
     /// for variables that change with the total strain (e.g. a void ratio).
@@ -468,13 +502,15 @@ pub fn elastoplastic_matrix<const N: usize>(
     }
 }
 
-/// One Euler stage: (dσ, dκ) at `point` on the frozen `branch` (spec (R17)).
+/// One Euler stage: (dσ, dκ) at `point` on the frozen `branch` (spec (R17)), with the
+/// branch's plastic data `known` when the model gave it along with the branch decision.
 fn stage<F, const N: usize, const K: usize>(
     model: &F,
     point: &GpPoint<N, K, F::Memory>,
     branch: Branch,
     d_eps: &SVector<f64, N>,
     dd_e: &SMatrix<f64, N, N>,
+    known: Option<Result<PlasticData<N>, MaterialError>>,
 ) -> Result<(SVector<f64, N>, SVector<f64, K>), MaterialError>
 where
     F: GpModelFunctions<N, K> + ?Sized,
@@ -483,7 +519,10 @@ where
     let plastic = match branch {
         Branch::Elastic => None,
         Branch::Loading | Branch::Unloading => {
-            let data = model.plastic_data(point, branch, d_eps)?;
+            let data = match known {
+                Some(data) => data?,
+                None => model.plastic_data(point, branch, d_eps)?,
+            };
             guarded_denominator(dd_e, &data).map(|den| (data, den))
         }
     };
@@ -603,14 +642,15 @@ where
         let mut trial = point.clone();
         let dd_e = model.elastic_matrix(&trial);
         let d_sig_e = dd_e * de;
-        let (branch, c0) = model.begin_substep(&mut trial, &de, &d_sig_e, opts.tol_n)?;
-        let (ds1, dk1) = stage(model, &trial, branch, &de, &dd_e)?;
+        let (branch, c0, data1) = model.begin_substep_with_data(&mut trial, &de, &d_sig_e, opts.tol_n)?;
+        let (ds1, dk1) = stage(model, &trial, branch, &de, &dd_e, data1)?;
         let mut predicted = trial.clone();
         predicted.sigma += ds1;
         predicted.kappa += dk1;
         let dd_e_pred = model.elastic_matrix(&predicted);
+        let mut data2 = None;
         if !at_dt_min && flips_left > 0 {
-            let c1 = model.loading_indicator(&predicted, &de, &(dd_e_pred * de))?;
+            let (c1, data) = model.indicator_with_data(&predicted, &de, &(dd_e_pred * de), branch)?;
             if is_flip(branch, classify_indicator(c1, opts.tol_n)) {
                 // Branch change inside the substep: retry up to the estimated change point,
                 // without touching dt_err.
@@ -619,8 +659,9 @@ where
                 dt_limit = Some(change_point(c0, c1) * dt);
                 continue;
             }
+            data2 = data;
         }
-        let (ds2, dk2) = stage(model, &predicted, branch, &de, &dd_e_pred)?;
+        let (ds2, dk2) = stage(model, &predicted, branch, &de, &dd_e_pred, data2)?;
         let new_sigma = trial.sigma + (ds1 + ds2) * 0.5;
         let new_kappa = trial.kappa + (dk1 + dk2) * 0.5;
         let err = model.substep_error((&new_sigma, &new_kappa), (&ds1, &dk1), (&ds2, &dk2));

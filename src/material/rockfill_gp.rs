@@ -36,7 +36,8 @@
 //! * softening guard on H_DM (item 4, (R12)).
 
 use super::gp_integrator::{
-    integrate, Branch, GpModelFunctions, GpPoint, PlasticData, StageIncrement, SubstepOptions,
+    classify_indicator, integrate, Branch, GpModelFunctions, GpPoint, PlasticData, StageIncrement,
+    SubstepOptions,
 };
 use super::interface_gp::TangentChoice;
 use super::{SolidModel, SolidUpdate, TangentKind};
@@ -296,7 +297,7 @@ impl InvariantsCompressionPositive {
 /// sin 3θ = (3√3/2)·J3/J2^{3/2}  clipped to [−1, 1]
 /// ```
 pub fn invariants_compression_positive(sigma: &Vector6) -> InvariantsCompressionPositive {
-    let p = -(sigma[0] + sigma[1] + sigma[2]) / 3.0;
+    let p = mean_pressure(sigma);
     let dev = Vector6::new(
         -sigma[0] - p,
         -sigma[1] - p,
@@ -312,6 +313,11 @@ pub fn invariants_compression_positive(sigma: &Vector6) -> InvariantsCompression
     let q = (3.0 * j2).sqrt();
     let sin3theta = lode_function(&dev, j2);
     InvariantsCompressionPositive { p, q, sin3theta, dev }
+}
+
+/// Compression-positive mean stress p = −tr σ/3 of a tension-positive Voigt stress (spec (R1)).
+fn mean_pressure(sigma: &Vector6) -> f64 {
+    -(sigma[0] + sigma[1] + sigma[2]) / 3.0
 }
 
 /// sin 3θ of a deviator (stress-like Voigt) with J2 given; 0 when J2 vanishes.
@@ -432,8 +438,7 @@ impl RockfillGp {
 
     /// Elastic matrix D^e (kPa) at a tension-positive stress in kPa (spec (R2), (R3)).
     fn elastic_kpa(&self, sigma: &Vector6) -> Matrix6 {
-        let p = invariants_compression_positive(sigma).p;
-        let (k, g) = self.moduli(p.max(self.pmin));
+        let (k, g) = self.moduli(mean_pressure(sigma).max(self.pmin));
         bulk_shear_stiffness(k, g)
     }
 
@@ -486,6 +491,66 @@ impl RockfillGp {
             m_s,
             mg: self.lode_slope(self.params.mg, sin3theta),
             mf: self.lode_slope(self.params.mf, sin3theta),
+        }
+    }
+
+    /// Directions (R5)–(R7) and moduli (R8)/(R14) of `branch` from the local quantities
+    /// `loc` of `point`, returned tension positive (n = −n_c).
+    fn plastic_data_at(
+        &self,
+        loc: &Local,
+        point: &Point,
+        branch: Branch,
+    ) -> Result<PlasticData<6>, MaterialError> {
+        let p = &self.params;
+        let mv = m_v();
+        let n_c = self.loading_direction(loc);
+        let d_g = (1.0 + p.alpha_g) * (loc.mg - loc.eta);
+        let ng = (1.0 + d_g * d_g).sqrt();
+        let (n_gv, n_gs) = (d_g / ng, 1.0 / ng);
+        let (n_g_c, h) = match branch {
+            Branch::Loading => (
+                mv * n_gv + loc.m_s * n_gs,
+                self.h_loading(loc, &point.kappa, &point.memory),
+            ),
+            Branch::Unloading => (
+                mv * (-n_gv.abs()) + loc.m_s * n_gs,
+                self.h_unloading(loc, &point.kappa, &point.memory),
+            ),
+            Branch::Elastic => {
+                return Err(MaterialError::new(
+                    "rockfill GP: plastic data of the elastic branch",
+                ))
+            }
+        };
+        if !h.is_nan() && n_c.iter().chain(n_g_c.iter()).all(|x| x.is_finite()) {
+            Ok(PlasticData {
+                n: -n_c,
+                n_g: -n_g_c,
+                h,
+            })
+        } else {
+            Err(MaterialError::new(format!(
+                "rockfill GP: non-finite plastic data at p = {:.4e} kPa, η = {:.4e}",
+                loc.p_hat, loc.eta
+            )))
+        }
+    }
+
+    /// (R15) indicator nᵀdσe/(|n||dσe|) from the local quantities `loc`, with tensor norms
+    /// (|n| of the strain-like n with tensorial shear, √(σ:σ) for dσe), so that the branch
+    /// decisions and the flip estimates do not depend on the orientation of the axes.
+    fn indicator_at(&self, loc: &Local, d_sig_e: &Vector6) -> f64 {
+        // n in the tension-positive convention of the integrator: n = −n_c.
+        let n = -self.loading_direction(loc);
+        let n_norm =
+            (n[0] * n[0] + n[1] * n[1] + n[2] * n[2] + 0.5 * (n[3] * n[3] + n[4] * n[4] + n[5] * n[5]))
+                .sqrt();
+        let den = n_norm * self.stress_norm(d_sig_e);
+        if den > 0.0 && den.is_finite() {
+            (n.dot(d_sig_e) / den).clamp(-1.0, 1.0)
+        } else {
+            0.0
         }
     }
 
@@ -606,10 +671,16 @@ impl RockfillGp {
     /// Tension cut-off and η cap on a kPa tension-positive stress (spec §8.6 item 1).
     /// Returns true when the cut-off reset the stress.
     fn apply_stress_limits(&self, sigma: &mut Vector6) -> bool {
+        self.stress_limits(sigma).is_none()
+    }
+
+    /// [`apply_stress_limits`](Self::apply_stress_limits) returning the invariants of the
+    /// limited stress, or `None` when the cut-off reset it.
+    fn stress_limits(&self, sigma: &mut Vector6) -> Option<InvariantsCompressionPositive> {
         let inv = invariants_compression_positive(sigma);
         if inv.p.is_nan() || inv.p < self.p_cutoff {
             *sigma = Vector6::new(-self.pmin, -self.pmin, -self.pmin, 0.0, 0.0, 0.0);
-            return true;
+            return None;
         }
         let mf = self.lode_slope(self.params.mf, inv.sin3theta);
         let eta_cap = (0.999 * self.eta_f(mf)).min(ETA_CAP_ABS);
@@ -617,8 +688,9 @@ impl RockfillGp {
             let scale = eta_cap * inv.p / inv.q;
             let s = inv.dev * scale;
             *sigma = -Vector6::new(s[0] + inv.p, s[1] + inv.p, s[2] + inv.p, s[3], s[4], s[5]);
+            return Some(invariants_compression_positive(sigma));
         }
-        false
+        Some(inv)
     }
 }
 
@@ -636,40 +708,7 @@ impl GpModelFunctions<6, NK> for RockfillGp {
         branch: Branch,
         d_eps: &Vector6,
     ) -> Result<PlasticData<6>, MaterialError> {
-        let loc = self.local(&point.sigma, d_eps);
-        let p = &self.params;
-        let mv = m_v();
-        let n_c = self.loading_direction(&loc);
-        let d_g = (1.0 + p.alpha_g) * (loc.mg - loc.eta);
-        let ng = (1.0 + d_g * d_g).sqrt();
-        let (n_gv, n_gs) = (d_g / ng, 1.0 / ng);
-        let (n_g_c, h) = match branch {
-            Branch::Loading => (
-                mv * n_gv + loc.m_s * n_gs,
-                self.h_loading(&loc, &point.kappa, &point.memory),
-            ),
-            Branch::Unloading => (
-                mv * (-n_gv.abs()) + loc.m_s * n_gs,
-                self.h_unloading(&loc, &point.kappa, &point.memory),
-            ),
-            Branch::Elastic => {
-                return Err(MaterialError::new(
-                    "rockfill GP: plastic data of the elastic branch",
-                ))
-            }
-        };
-        if !h.is_nan() && n_c.iter().chain(n_g_c.iter()).all(|x| x.is_finite()) {
-            Ok(PlasticData {
-                n: -n_c,
-                n_g: -n_g_c,
-                h,
-            })
-        } else {
-            Err(MaterialError::new(format!(
-                "rockfill GP: non-finite plastic data at p = {:.4e} kPa, η = {:.4e}",
-                loc.p_hat, loc.eta
-            )))
-        }
+        self.plastic_data_at(&self.local(&point.sigma, d_eps), point, branch)
     }
 
     /// (R15) indicator nᵀdσe/(|n||dσe|) with tensor norms (|n| of the strain-like n with
@@ -681,17 +720,36 @@ impl GpModelFunctions<6, NK> for RockfillGp {
         d_eps: &Vector6,
         d_sig_e: &Vector6,
     ) -> Result<f64, MaterialError> {
-        // n in the tension-positive convention of the integrator: n = −n_c.
-        let n = -self.loading_direction(&self.local(&point.sigma, d_eps));
-        let n_norm =
-            (n[0] * n[0] + n[1] * n[1] + n[2] * n[2] + 0.5 * (n[3] * n[3] + n[4] * n[4] + n[5] * n[5]))
-                .sqrt();
-        let den = n_norm * self.stress_norm(d_sig_e);
-        Ok(if den > 0.0 && den.is_finite() {
-            (n.dot(d_sig_e) / den).clamp(-1.0, 1.0)
-        } else {
-            0.0
-        })
+        Ok(self.indicator_at(&self.local(&point.sigma, d_eps), d_sig_e))
+    }
+
+    /// The default branch decision, with the branch's plastic data from the same local
+    /// quantities (one evaluation of the invariants and the Lode angle instead of two).
+    fn begin_substep_with_data(
+        &self,
+        point: &mut Point,
+        d_eps: &Vector6,
+        d_sig_e: &Vector6,
+        tol_n: f64,
+    ) -> Result<(Branch, f64, Option<Result<PlasticData<6>, MaterialError>>), MaterialError> {
+        let loc = self.local(&point.sigma, d_eps);
+        let c = self.indicator_at(&loc, d_sig_e);
+        let branch = classify_indicator(c, tol_n);
+        let data = (branch != Branch::Elastic).then(|| self.plastic_data_at(&loc, point, branch));
+        Ok((branch, c, data))
+    }
+
+    /// The loading indicator and the plastic data of `branch` from the same local quantities.
+    fn indicator_with_data(
+        &self,
+        point: &Point,
+        d_eps: &Vector6,
+        d_sig_e: &Vector6,
+        branch: Branch,
+    ) -> Result<(f64, Option<Result<PlasticData<6>, MaterialError>>), MaterialError> {
+        let loc = self.local(&point.sigma, d_eps);
+        let data = (branch != Branch::Elastic).then(|| self.plastic_data_at(&loc, point, branch));
+        Ok((self.indicator_at(&loc, d_sig_e), data))
     }
 
     /// (R17): dε_v^p = dλ·tr(n_g_c), dξ per [`XiRule`], dε^p = dλ·n_g.
@@ -719,12 +777,11 @@ impl GpModelFunctions<6, NK> for RockfillGp {
     /// (R17), §8.6). Setting η_u in every loading substep stores the ratio at the last
     /// loading → unloading switch.
     fn after_accept(&self, point: &mut Point, branch: Branch) -> Result<Branch, MaterialError> {
-        if self.apply_stress_limits(&mut point.sigma) {
+        let Some(inv) = self.stress_limits(&mut point.sigma) else {
             point.memory.cut = true;
             return Ok(Branch::Elastic);
-        }
+        };
         if branch == Branch::Loading {
-            let inv = invariants_compression_positive(&point.sigma);
             let p_hat = inv.p.max(self.pmin);
             let eta = inv.q / p_hat;
             let mf = self.lode_slope(self.params.mf, inv.sin3theta);
@@ -1712,6 +1769,39 @@ mod tests {
             }
             let err = (fd - up.tangent.0).norm() / up.tangent.0.norm();
             prop_assert!(err < 1e-3, "relative tangent error {}", err);
+        }
+
+        /// The branch decision and indicator that hand their plastic data to the Euler
+        /// stages give bitwise what the separate calls give (the contract of
+        /// `begin_substep_with_data` and `indicator_with_data`), on both plastic branches.
+        #[test]
+        fn shared_local_quantities_give_the_separate_calls_bitwise(
+            eta in 0.0_f64..1.5,
+            dir in prop::array::uniform6(-1e-3_f64..1e-3),
+        ) {
+            let m = seed_model();
+            let mut point = m.to_point(&loaded_state(&m, eta));
+            let de = Vector6::from(dir);
+            let d_sig_e = m.elastic_matrix(&point) * de;
+            let tol = SubstepOptions::default().tol_n;
+            let c = m.loading_indicator(&point, &de, &d_sig_e).expect("indicator");
+            let (branch, c_shared, data) = m.begin_substep_with_data(&mut point, &de, &d_sig_e, tol).expect("begin");
+            prop_assert_eq!(c.to_bits(), c_shared.to_bits());
+            prop_assert_eq!(branch, classify_indicator(c, tol));
+            let same = |a: &PlasticData<6>, b: &PlasticData<6>| {
+                a.n.iter().chain(a.n_g.iter()).zip(b.n.iter().chain(b.n_g.iter())).all(|(x, y)| x.to_bits() == y.to_bits())
+                    && a.h.to_bits() == b.h.to_bits()
+            };
+            match data {
+                Some(d) => prop_assert!(same(&d.expect("data"), &m.plastic_data(&point, branch, &de).expect("separate"))),
+                None => prop_assert_eq!(branch, Branch::Elastic),
+            }
+            for b in [Branch::Loading, Branch::Unloading] {
+                let (c_b, d_b) = m.indicator_with_data(&point, &de, &d_sig_e, b).expect("indicator with data");
+                prop_assert_eq!(c_b.to_bits(), c.to_bits());
+                let separate = m.plastic_data(&point, b, &de).expect("separate");
+                prop_assert!(same(&d_b.expect("given").expect("data"), &separate));
+            }
         }
 
         /// Same input, bitwise identical output (no hidden scratch).
