@@ -133,7 +133,7 @@
 //! | resolution | `mesh.cfrd` | solver |
 //! |---|---|---|
 //! | coarse | 8 fill layers, 30 m panels, 3 impoundment stages | canonical LU (PETSc's LU) |
-//! | medium | 30 fill layers, 15 m panels, 4 impoundment stages | canonical LU with MUMPS |
+//! | medium | 30 fill layers, 15 m panels, 4 impoundment stages | reduced multigrid (`reduced_amg`); its quake scenes canonical LU with MUMPS |
 //! | fine | 86 fill layers (as the seed), 2 elements per panel, 6 impoundment stages | canonical LU with MUMPS; run it [in parts](#runs-in-parts) |
 //!
 //! All of them use 8 load steps per stage, `newton_tol: 1.0e-5` (above the noise of the GP
@@ -296,8 +296,10 @@
 //!   diagonal. The interface, joint and slab nodes are factored (MUMPS over the ranks), the
 //!   fill gets algebraic multigrid (GAMG), one after the other ([`crate::linalg::reduced_amg`]).
 //!   Every rank holds only its share, so memory grows with the mesh and falls with the ranks:
-//!   on the medium seed mesh a third of the canonical LU's memory per rank, in 0.59 of its
-//!   time ([`crate::performance`], "Linear solvers on the seed dam"). The corrections are
+//!   on the medium seed mesh, whose scenes use it, 0.37–0.39 of the canonical LU's memory per
+//!   rank, in 0.59–0.64 of its time ([`crate::performance`], "Linear solvers on the seed
+//!   dam"). Its results agree with the canonical LU's to the Newton tolerance but are not
+//!   reproducible bit for bit, not even between two runs on the same ranks. The corrections are
 //!   solved only as tightly as Newton needs (Eisenstat–Walker; `rtol` is not used) and the
 //!   preconditioner is kept across the Jacobians of a stage while GMRES converges quickly;
 //!   the run summary counts its builds as factorizations. Options take the prefix `reduced_`

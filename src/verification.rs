@@ -229,6 +229,12 @@
 //!
 //! ### Medium mesh: the three interface models
 //!
+//! The tables here come from canonical-LU runs. The medium scenes now run on the reduced
+//! multigrid (`linear_solver: reduced_amg`), whose slab tables agree with the canonical LU's to
+//! 0.0034 MPa in σ_s, 0.0111 MPa in σ_a and 0.003 cm for the three models ([`crate::performance`],
+//! "Linear solvers on the seed dam"); `--linear-solver canonical_lu
+//! -canonical_pc_factor_mat_solver_type mumps` gives the LU's.
+//!
 //! Source: `MEDIUM=1 scripts/make_seed_static_figures.sh` at commit 51547bd
 //! (`seed_medium_slab.png`, the runs' `fig08_slab_stress.csv`), 2 ranks, the trilinear slab
 //! (before the seed scenes' slab had incompatible modes). With incompatible modes (commit
