@@ -53,6 +53,14 @@
 //!   and the same Newton iteration and cut-back counts (`seed_static_runs.csv`). The same holds
 //!   with one load step per stage, a much harder path with 29–30 cut-backs (hyperbolic and
 //!   Mohr–Coulomb checked, commit efe2165).
+//! * **Not across machines.** The same build on another kind of CPU may give other bits: PETSc's
+//!   vector operations run on OpenBLAS, which picks its kernels by CPU. On one machine and build,
+//!   `OPENBLAS_CORETYPE=Haswell` against `Prescott` moved the coarse hyperbolic scene's first 6
+//!   stages by 4.7e-3 relative (256 against 254 Newton iterations; `mpirun -x
+//!   OPENBLAS_CORETYPE -n 2 cfrd run inputs/scenes/seed_coarse_hyperbolic.yaml -o OUT
+//!   --stop-after-stage 6`, commit 8773800), and on an AMD EPYC machine the coarse goldens,
+//!   made on other machines, fail with the code they passed on there. Results that must match
+//!   across machines need the same `OPENBLAS_CORETYPE` on all of them.
 //!
 //! ## Golden results
 //!
