@@ -112,6 +112,11 @@ use nalgebra::{SMatrix, SVector};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
+/// Plastic data a model hands over with its branch decision
+/// ([`GpModelFunctions::begin_substep_with_data`]): `None` when it gives none, otherwise what
+/// [`GpModelFunctions::plastic_data`] returns at that point (spec (R16), (I19)).
+pub type KnownPlasticData<const N: usize> = Option<Result<PlasticData<N>, MaterialError>>;
+
 /// Branch of a GP (sub)step (spec (R15), (I17)).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema, Default)]
 #[serde(rename_all = "snake_case")]
@@ -299,14 +304,13 @@ pub trait GpModelFunctions<const N: usize, const K: usize> {
     /// evaluation instead of two. The data, when given, must be bitwise what
     /// [`plastic_data`](Self::plastic_data) returns there (its error included); `None`, the
     /// default, lets the first Euler stage call `plastic_data` itself.
-    #[allow(clippy::type_complexity)]
     fn begin_substep_with_data(
         &self,
         point: &mut GpPoint<N, K, Self::Memory>,
         d_eps: &SVector<f64, N>,
         d_sig_e: &SVector<f64, N>,
         tol_n: f64,
-    ) -> Result<(Branch, f64, Option<Result<PlasticData<N>, MaterialError>>), MaterialError> {
+    ) -> Result<(Branch, f64, KnownPlasticData<N>), MaterialError> {
         let (branch, c) = self.begin_substep(point, d_eps, d_sig_e, tol_n)?;
         Ok((branch, c, None))
     }
@@ -315,14 +319,13 @@ pub trait GpModelFunctions<const N: usize, const K: usize> {
     /// data of `branch` there (none for [`Branch::Elastic`]), under the same contract as
     /// [`begin_substep_with_data`](Self::begin_substep_with_data): the integrator calls it at
     /// the Euler-predicted point, whose second stage then needs that data.
-    #[allow(clippy::type_complexity)]
     fn indicator_with_data(
         &self,
         point: &GpPoint<N, K, Self::Memory>,
         d_eps: &SVector<f64, N>,
         d_sig_e: &SVector<f64, N>,
         branch: Branch,
-    ) -> Result<(f64, Option<Result<PlasticData<N>, MaterialError>>), MaterialError> {
+    ) -> Result<(f64, KnownPlasticData<N>), MaterialError> {
         let _ = branch;
         Ok((self.loading_indicator(point, d_eps, d_sig_e)?, None))
     }
@@ -510,7 +513,7 @@ fn stage<F, const N: usize, const K: usize>(
     branch: Branch,
     d_eps: &SVector<f64, N>,
     dd_e: &SMatrix<f64, N, N>,
-    known: Option<Result<PlasticData<N>, MaterialError>>,
+    known: KnownPlasticData<N>,
 ) -> Result<(SVector<f64, N>, SVector<f64, K>), MaterialError>
 where
     F: GpModelFunctions<N, K> + ?Sized,

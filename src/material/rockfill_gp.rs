@@ -36,8 +36,8 @@
 //! * softening guard on H_DM (item 4, (R12)).
 
 use super::gp_integrator::{
-    classify_indicator, integrate, Branch, GpModelFunctions, GpPoint, PlasticData, StageIncrement,
-    SubstepOptions,
+    classify_indicator, integrate, Branch, GpModelFunctions, GpPoint, KnownPlasticData, PlasticData,
+    StageIncrement, SubstepOptions,
 };
 use super::interface_gp::TangentChoice;
 use super::{SolidModel, SolidUpdate, TangentKind};
@@ -731,7 +731,7 @@ impl GpModelFunctions<6, NK> for RockfillGp {
         d_eps: &Vector6,
         d_sig_e: &Vector6,
         tol_n: f64,
-    ) -> Result<(Branch, f64, Option<Result<PlasticData<6>, MaterialError>>), MaterialError> {
+    ) -> Result<(Branch, f64, KnownPlasticData<6>), MaterialError> {
         let loc = self.local(&point.sigma, d_eps);
         let c = self.indicator_at(&loc, d_sig_e);
         let branch = classify_indicator(c, tol_n);
@@ -746,7 +746,7 @@ impl GpModelFunctions<6, NK> for RockfillGp {
         d_eps: &Vector6,
         d_sig_e: &Vector6,
         branch: Branch,
-    ) -> Result<(f64, Option<Result<PlasticData<6>, MaterialError>>), MaterialError> {
+    ) -> Result<(f64, KnownPlasticData<6>), MaterialError> {
         let loc = self.local(&point.sigma, d_eps);
         let data = (branch != Branch::Elastic).then(|| self.plastic_data_at(&loc, point, branch));
         Ok((self.indicator_at(&loc, d_sig_e), data))
