@@ -632,8 +632,6 @@ fn a_quake_with_the_distributed_solver_agrees_with_the_canonical_one() {
     }
 }
 
-/// The largest relative displacement difference of a `cfrd compare` table over the quake's
-/// steps (`quake`) or over the static stages' steps.
 /// `cfrd compare A B` in `d`: the largest relative displacement difference in the quake and
 /// before it, and the table.
 fn compare_displacements(d: &Path, a: &str, b: &str) -> (f64, f64, String) {
@@ -657,6 +655,8 @@ fn counts_of_runs(d: &Path, runs: &[(&str, &str)], key: &str) -> Vec<u64> {
         .collect()
 }
 
+/// The largest relative displacement difference of a `cfrd compare` table over the quake's
+/// steps (`quake`) or over the static stages' steps.
 fn displacement_difference(table: &str, quake: bool) -> f64 {
     table
         .lines()
@@ -674,10 +674,13 @@ fn displacement_difference(table: &str, quake: bool) -> f64 {
 
 /// The time step's predictor (`earthquake.predictor: extrapolate` starts Newton from
 /// u₀ + Δt·v₀, the default `none` from u₀) on the small GP-interface dam's quake: fewer Newton
-/// iterations for the same solution. Both runs converge every step to the same residual
-/// tolerance, so the quake's displacements may differ only by what that tolerance leaves,
-/// which must stay below the tolerance itself (relative, `cfrd compare`); the static stages
-/// are the same bit for bit.
+/// iterations for the same solution. The static stages are the same bit for bit. In the quake
+/// both runs stop each step's Newton iterations at the same residual tolerance from different
+/// starts, so their displacements differ by what that tolerance leaves, and the claim "the
+/// same solution" is that this difference falls with the tolerance: a tolerance 10× tighter
+/// (1e-6) must shrink it at least 10× (relative, `cfrd compare`; measured 1.1e-5 and 6.9e-7 on
+/// OpenBLAS's AVX2 kernels). Below about 1e-6 the GP stress integration's noise (STOL 1e-4 of
+/// the interface points) sets the floor instead: at 1e-7 the difference was 8.7e-7.
 #[test]
 fn the_extrapolating_time_step_predictor_saves_newton_iterations_for_the_same_quake() {
     let _turn = mpi_turn();
@@ -691,16 +694,39 @@ fn the_extrapolating_time_step_predictor_saves_newton_iterations_for_the_same_qu
         ),
     );
     let d = dir.path();
-    let runs = [("predicted.yaml", "extrapolate"), ("dam.yaml", "none")];
+    for yaml in ["dam", "predicted"] {
+        tightened_newton(d, yaml);
+    }
+    let runs = [
+        ("predicted.yaml", "extrapolate"),
+        ("dam.yaml", "none"),
+        ("predicted_tight.yaml", "extrapolate_tight"),
+        ("dam_tight.yaml", "none_tight"),
+    ];
     let newton = counts_of_runs(d, &runs, "newton_iterations");
     let (quake, statics, table) = compare_displacements(d, "none/results.h5", "extrapolate/results.h5");
+    let (tight, tight_statics, tight_table) =
+        compare_displacements(d, "none_tight/results.h5", "extrapolate_tight/results.h5");
     println!(
-        "Newton iterations with / without the predictor: {} / {}; displacement difference {quake:.2e} in the quake, {statics:.2e} before",
-        newton[0], newton[1]
+        "Newton iterations with / without the predictor: {} / {} (tolerance 1e-5), {} / {} (1e-6); \
+         displacement difference {quake:.2e} (1e-5), {tight:.2e} (1e-6) in the quake, \
+         {statics:.2e} / {tight_statics:.2e} before",
+        newton[0], newton[1], newton[2], newton[3]
     );
     assert!(newton[0] < newton[1], "Newton iterations {newton:?}");
+    assert!(newton[2] < newton[3], "Newton iterations {newton:?}");
     assert_eq!(statics, 0.0, "{table}");
-    assert!(quake > 0.0 && quake < 1.0e-5, "{table}");
+    assert_eq!(tight_statics, 0.0, "{tight_table}");
+    assert!(quake > 0.0 && 10.0 * tight <= quake, "{table}\n{tight_table}");
+}
+
+/// Writes `<yaml>_tight.yaml` into `d`: `<yaml>.yaml` with the Newton tolerance 1e-5 tightened
+/// to 1e-6.
+fn tightened_newton(d: &Path, yaml: &str) {
+    let scene = std::fs::read_to_string(d.join(format!("{yaml}.yaml"))).unwrap();
+    let tight = scene.replace("newton_tol: 1.0e-5,", "newton_tol: 1.0e-6,");
+    assert_ne!(scene, tight, "{yaml}.yaml holds 'newton_tol: 1.0e-5,'");
+    std::fs::write(d.join(format!("{yaml}_tight.yaml")), tight).unwrap();
 }
 
 /// A time step's Newton corrections take the full step when it lowers ‖F‖
