@@ -59,8 +59,11 @@
 //!   stages by 4.7e-3 relative (256 against 254 Newton iterations; `mpirun -x
 //!   OPENBLAS_CORETYPE -n 2 cfrd run inputs/scenes/seed_coarse_hyperbolic.yaml -o OUT
 //!   --stop-after-stage 6`, commit 8773800), and on an AMD EPYC machine the coarse goldens,
-//!   made on other machines, fail with the code they passed on there. Results that must match
-//!   across machines need the same `OPENBLAS_CORETYPE` on all of them.
+//!   then made with the AVX-512 kernels, failed with the code they passed on elsewhere. So
+//!   `ci/env.sh` (which the README's commands and the scripts source) pins the AVX2 kernels,
+//!   `OPENBLAS_CORETYPE=Haswell`, on every CPU with AVX2 and FMA; OpenBLAS's own choice on
+//!   that EPYC, `Zen`, gives the same bits (`cfrd compare --tolerance 0`: 0, commit 8ba4f59).
+//!   The goldens are made under that pin. A run outside `ci/env.sh` uses OpenBLAS's choice.
 //!
 //! ## Golden results
 //!
