@@ -752,6 +752,56 @@ mod tests {
         assert!((rows[60].sigma_n - 2e5).abs() < 1e-3 && rows[60].tau > 0.0);
     }
 
+    /// The branch (H5) the shear increment of `d` starts on from `prev`.
+    fn starts_primary(m: &HyperbolicInterface, prev: &HyperbolicState, d: &Local3) -> bool {
+        let tau = Vector2::from(prev.tau);
+        let sl = tau.norm() / m.strength_floor(prev.sigma_n);
+        HyperbolicInterface::is_primary(sl, prev.sl_max, tau.dot(&Vector2::new(d[0], d[1])))
+    }
+
+    /// A reload that meets SL_max 1.95e-8 m into an increment of 1e-7 m (the proptest's case
+    /// sigma_n = 20 kPa, u0 = 4.5e-4 m, back = 2.17e-4): along τ the derivative is the end
+    /// state's primary stiffness, across τ the step's secant one (τ_y accumulates k over the
+    /// whole path, reload and primary), 1.35 % above. The continuum tangent is the limit as the
+    /// increment → 0: an increment of 1e-9 m, which stays on the reload branch, has it in
+    /// both directions.
+    #[test]
+    fn a_reload_meeting_sl_max_within_the_increment_has_the_end_tangent_in_the_limit() {
+        let m = model(0.02);
+        let u0 = 0.00044983891490434807;
+        let a = m
+            .update(&m.init_state(2e4).unwrap(), &Local3::new(u0, 0.0, 0.0))
+            .unwrap()
+            .state;
+        let prev = m
+            .update(&a, &Local3::new(-0.00021701029553606118 * u0 * 0.2, 0.0, 0.0))
+            .unwrap()
+            .state;
+        let long = Local3::new(1e-7, 0.0, 0.0);
+        let up = m.update(&prev, &long).unwrap();
+        assert!(!starts_primary(&m, &prev, &long) && up.state.primary, "{up:?}");
+        let fd = fd_tangent(&m, &prev, &long, [1e-10, 1e-10, 1e-12]);
+        let secant = (up.state.tau[0] - prev.tau[0]) / long[0];
+        assert!(
+            (fd[(0, 0)] / up.tangent[(0, 0)] - 1.0).abs() < 1e-6,
+            "{fd}{}",
+            up.tangent
+        );
+        assert!((fd[(1, 1)] / secant - 1.0).abs() < 1e-6, "{fd} secant {secant}");
+        assert!(fd[(1, 1)] > 1.01 * up.tangent[(1, 1)], "{fd}{}", up.tangent);
+        let short = Local3::new(1e-9, 0.0, 0.0);
+        let up = m.update(&prev, &short).unwrap();
+        assert!(!up.state.primary, "{up:?}");
+        let fd = fd_tangent(&m, &prev, &short, [1e-11, 1e-11, 1e-12]);
+        for i in 0..2 {
+            assert!(
+                (fd[(i, i)] / up.tangent[(i, i)] - 1.0).abs() < 1e-3,
+                "{fd}{}",
+                up.tangent
+            );
+        }
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(64))]
 
@@ -771,6 +821,9 @@ mod tests {
             let tau = Vector2::from(prev.tau);
             prop_assume!(tau.norm() < 1e-9 || tau.dot(&Vector2::new(d[0], d[1])).abs() > 1e-3 * tau.norm() * eps);
             let up = m.update(&prev, &d).unwrap();
+            // an increment that meets SL_max part-way is not yet in the limit (see
+            // `a_reload_meeting_sl_max_within_the_increment_has_the_end_tangent_in_the_limit`)
+            prop_assume!(starts_primary(&m, &prev, &d) == up.state.primary);
             let fd = fd_tangent(&m, &prev, &d, [1e-10, 1e-10, 1e-12]);
             let scale = up.tangent[(0, 0)];
             for i in 0..2 {
