@@ -97,6 +97,12 @@
 //!   surfaces); it may return [`Branch::Elastic`] to make the tangent elastic.
 //! * `stop_in_substep` ends the integration inside an accepted substep (the interface opening,
 //!   spec §2.12): the model interpolates the point, the result reports the fraction reached.
+//! * A model whose indicator and plastic data share costly local quantities (invariants,
+//!   Lode angle) may override `begin_substep_with_data` and `indicator_with_data` to hand the
+//!   stage the plastic data of the branch it decided, instead of having `plastic_data`
+//!   recompute it at the same point; the data must be the same bits `plastic_data` gives
+//!   there (the rockfill does this, checked bit for bit by its property test). The defaults
+//!   hand over nothing.
 //! * `substep_error` replaces the componentwise error measure when the internal variables
 //!   need a joint norm or a state-dependent scale.
 //! * `error_scales` gives absolute floors: the stress floor in model units (p_a or σ_min),
@@ -324,9 +330,8 @@ pub trait GpModelFunctions<const N: usize, const K: usize> {
         point: &GpPoint<N, K, Self::Memory>,
         d_eps: &SVector<f64, N>,
         d_sig_e: &SVector<f64, N>,
-        branch: Branch,
+        _branch: Branch,
     ) -> Result<(f64, KnownPlasticData<N>), MaterialError> {
-        let _ = branch;
         Ok((self.loading_indicator(point, d_eps, d_sig_e)?, None))
     }
 
