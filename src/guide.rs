@@ -293,13 +293,15 @@
 //!   installs).
 //! * `linear_solver: reduced_amg`: GMRES (CG for symmetric tangents) preconditioned on the
 //!   coupled rows only, the rows of unplaced nodes and constrained DOFs solved by their
-//!   diagonal. The interface, joint and slab nodes are factored (MUMPS over the ranks), the
+//!   diagonal. The interface, joint and slab nodes are factored (SuperLU_DIST over the ranks), the
 //!   fill gets algebraic multigrid (GAMG), one after the other ([`crate::linalg::reduced_amg`]).
 //!   Every rank holds only its share, so memory grows with the mesh and falls with the ranks:
 //!   on the medium seed mesh, whose scenes use it, 0.37–0.39 of the canonical LU's memory per
 //!   rank, in 0.59–0.64 of its time ([`crate::performance`], "Linear solvers on the seed
-//!   dam"). Its results agree with the canonical LU's to the Newton tolerance but are not
-//!   reproducible bit for bit, not even between two runs on the same ranks. The corrections are
+//!   dam"). Its results agree with the canonical LU's to the Newton tolerance; two runs on the
+//!   same rank count give the same bits, other rank counts other bits. Each rank runs one
+//!   OpenMP thread inside SuperLU_DIST unless `OMP_NUM_THREADS` is set (one thread per core
+//!   on every rank would compete for the cores of the other ranks). The corrections are
 //!   solved only as tightly as Newton needs (Eisenstat–Walker; `rtol` is not used) and the
 //!   preconditioner is kept across the Jacobians of a stage while GMRES converges quickly;
 //!   the run summary counts its builds as factorizations. Options take the prefix `reduced_`

@@ -54,6 +54,27 @@ macro_rules! call {
     };
 }
 
+/// One OpenMP thread per MPI rank, unless `OMP_NUM_THREADS` says otherwise: SuperLU_DIST (the
+/// reduced multigrid's structure factorization, [`crate::linalg::reduced_amg`]) is built with
+/// OpenMP, whose default of one thread per core makes every rank's threads compete for the
+/// cores the other ranks run on (measured: the small default dam on 2 ranks had not ended after
+/// 9 min, against 9 s with one thread). `omp_set_num_threads` is looked up at run time, so a
+/// PETSc without OpenMP libraries needs nothing.
+fn one_openmp_thread_per_rank() {
+    if std::env::var_os("OMP_NUM_THREADS").is_some() {
+        return;
+    }
+    // SAFETY: dlsym with a NUL-terminated name; the symbol, where found, is libgomp's
+    // `void omp_set_num_threads(int)`, called once before any OpenMP region runs.
+    unsafe {
+        let f = libc::dlsym(libc::RTLD_DEFAULT, c"omp_set_num_threads".as_ptr());
+        if !f.is_null() {
+            let set: extern "C" fn(i32) = std::mem::transmute(f);
+            set(1);
+        }
+    }
+}
+
 /// PETSc library guard: initialized on a communicator, finalized on drop.
 pub struct Petsc {
     comm: mpi::ffi::MPI_Comm,
@@ -69,6 +90,7 @@ impl Petsc {
         unsafe {
             p::PETSC_COMM_WORLD = comm;
         }
+        one_openmp_thread_per_rank();
         // PETSc keeps argv; the strings are leaked on purpose (once per process).
         let prog = CString::new("cfrd").expect("no NUL").into_raw();
         let argv: &'static mut [*mut c_char; 2] = Box::leak(Box::new([prog, null_mut()]));

@@ -21,8 +21,18 @@
 //! - on that block a multiplicative field split (block Gauss–Seidel, swept forth and back
 //!   under CG): the **structure** (the nodes of zero-thickness elements, both faces, and of
 //!   the blocks with incompatible modes, i.e. the face slab; [`ReducedAmg::new`]'s
-//!   `structure`) by a complete LU (MUMPS over the ranks), the **fill** by GAMG with the
-//!   rigid-body translations as near-null space.
+//!   `structure`) by a complete LU (SuperLU_DIST over the ranks), the **fill** by GAMG with
+//!   the rigid-body translations as near-null space.
+//!
+//! **The same bits at every run.** The structure was first factored by MUMPS over the ranks,
+//! whose dynamic scheduling sums in an order that follows message timing: two runs of the
+//! embedded default dam on 2 ranks took 373 and 374 Newton iterations and ended 3.3e-3 of a
+//! field apart, and three runs of the medium Mohr–Coulomb scene 1,148–1,163 ([`crate::performance`]).
+//! With the fill's GAMG replaced by block Jacobi the runs still differed; with the structure
+//! by block Jacobi and LU they did not, nor with SuperLU_DIST (`cfrd compare --tolerance 0`:
+//! 0 for every such pair), which is the default now (test
+//! `multigrid_on_the_coupled_rows_gives_the_same_bits_at_every_run`). The same bits hold for
+//! one rank count; other rank counts split the fill and the structure otherwise.
 //!
 //! **Lagged.** Building the block's preconditioner (extracting the block, factoring the
 //! structure, setting the multigrid up) costs as much as several GMRES iterations: on the
@@ -146,7 +156,7 @@ impl ReducedAmg {
         default_option(&format!("-{PREFIX}fieldsplit_structure_pc_type"), "lu")?;
         default_option(
             &format!("-{PREFIX}fieldsplit_structure_pc_factor_mat_solver_type"),
-            "mumps",
+            "superlu_dist",
         )?;
         default_option(&format!("-{PREFIX}fieldsplit_fill_pc_type"), "gamg")?;
         Ok(Box::new(ReducedAmg {
