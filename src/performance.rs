@@ -458,13 +458,40 @@
 //!   fine scenes too until the reduced multigrid has carried a whole fine run (slab stage II,
 //!   the hard case, was not run with it).
 //!
-//!   **Not reproducible bit for bit.** Runs A, B and C are the same scene, solver, arithmetic
-//!   and rank count (A with `--linear-solver reduced_amg` on the scene of the canonical LU, B
-//!   and C on the scene of the reduced multigrid), yet they differ: 1,150, 1,163 and 1,148
-//!   Newton iterations, slab tables apart by up to 0.0010 MPa (σ_s), 0.0122 MPa (σ_a) and
-//!   0.0009 cm. Where the run-to-run difference enters (the factorization of the structure by
-//!   MUMPS over the ranks is a candidate) was not traced. The canonical LU gives the same bits
-//!   at every run and rank count; the reduced multigrid only agrees to the Newton tolerance.
+//!   **Not reproducible bit for bit with MUMPS; the same bits with SuperLU_DIST.** Runs A, B
+//!   and C are the same scene, solver, arithmetic and rank count (A with `--linear-solver
+//!   reduced_amg` on the scene of the canonical LU, B and C on the scene of the reduced
+//!   multigrid), yet they differ: 1,150, 1,163 and 1,148 Newton iterations, slab tables apart
+//!   by up to 0.0010 MPa (σ_s), 0.0122 MPa (σ_a) and 0.0009 cm. The cause is MUMPS's
+//!   factorization of the structure over the ranks: on the embedded default dam (`mpirun -n 2
+//!   cfrd run -o OUT -q --linear-solver reduced_amg`, twice, `cfrd compare --tolerance 0`)
+//!   two runs differed by 3.3e-3 of a field (373 and 374 Newton iterations) and still did
+//!   with the fill's GAMG replaced by block Jacobi, but not with the structure factored by
+//!   block Jacobi and LU, nor by SuperLU_DIST (0), which from commit c4e7b45 on factors the
+//!   structure (with one OpenMP thread per rank: with its default of one per core the 9-s run
+//!   had not ended after 9 min on 2 ranks). The medium hyperbolic scene, 2 ranks, alone on the
+//!   machine, one build, one run after the other (`/usr/bin/time -v mpirun -n 2 cfrd run
+//!   inputs/scenes/seed_medium_hyperbolic.yaml -o OUT -q`, B with
+//!   `-reduced_fieldsplit_structure_pc_factor_mat_solver_type mumps`; `summary.json`; OpenBLAS's
+//!   AVX2 kernels on an AMD EPYC):
+//!
+//!   | structure factored by | wall time | assembly | linear solves | Newton iterations | GMRES iterations | builds | peak memory per rank |
+//!   |---|---|---|---|---|---|---|---|
+//!   | SuperLU_DIST, run A | 396.9 s | 208.8 s | 177.3 s | 1,155 | 13,770 | 127 | 257 / 252 MiB |
+//!   | MUMPS, run B | 447.4 s | 229.9 s | 206.0 s | 1,165 | 13,900 | 127 | 228 / 219 MiB |
+//!   | SuperLU_DIST, run C | 423.5 s | 225.7 s | 186.6 s | 1,155 | 13,770 | 127 | 255 / 251 MiB |
+//!
+//!   A and C are the same bit for bit (`cfrd compare --tolerance 0`: 0; their
+//!   `fig08_slab_stress.csv` byte for byte); A's slab table is 0.0013 MPa (σ_s), 0.0081 MPa
+//!   (σ_a) and 0.0007 cm from B's. SuperLU_DIST takes some 12 % more memory per rank and no
+//!   more time (one run each way; the assembly alone moved by 8 % between A and C). The medium
+//!   Mohr–Coulomb scene on it: 453.5 s, 1,150 Newton iterations, 254 / 253 MiB per rank, its
+//!   slab table 0.0021 MPa (σ_s), 0.0085 MPa (σ_a) and 0.0020 cm from the canonical LU's run
+//!   above (whose arithmetic this build keeps). A restart from a stage's checkpoint gives the
+//!   uninterrupted run's bits too (the preconditioner is built afresh at every stage). Test:
+//!   `multigrid_on_the_coupled_rows_gives_the_same_bits_at_every_run` (`tests/cfrd_dam.rs`).
+//!   Other rank counts give other bits; the canonical LU alone gives the same bits on every
+//!   rank count.
 //!
 //!   The fine hyperbolic scene's first 20 fill stages, the same way (the same build; the
 //!   reduced multigrid with `--linear-solver reduced_amg -ksp_rtol 1e-7`, default options
