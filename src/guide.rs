@@ -296,8 +296,9 @@
 //!   diagonal. The interface, joint and slab nodes are factored (SuperLU_DIST over the ranks), the
 //!   fill gets algebraic multigrid (GAMG), one after the other ([`crate::linalg::reduced_amg`]).
 //!   Every rank holds only its share, so memory grows with the mesh and falls with the ranks:
-//!   on the medium seed mesh, whose scenes use it, 0.37–0.39 of the canonical LU's memory per
-//!   rank, in 0.59–0.64 of its time ([`crate::performance`], "Linear solvers on the seed
+//!   on the medium seed mesh, whose scenes use it, about 0.4 of the canonical LU's memory per
+//!   rank (0.41 with SuperLU_DIST on the structure, 0.37–0.39 with MUMPS), in 0.59–0.64 of
+//!   its time ([`crate::performance`], "Linear solvers on the seed
 //!   dam"). Its results agree with the canonical LU's to the Newton tolerance; two runs on the
 //!   same rank count give the same bits, other rank counts other bits. Each rank runs one
 //!   OpenMP thread inside SuperLU_DIST unless `OMP_NUM_THREADS` is set (one thread per core

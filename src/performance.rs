@@ -619,9 +619,9 @@
 //! (`scripts/solver_choice.sh RUNS P SCENE` measures it on a cluster); (2) GAMG on the whole
 //! matrix fails, but with the decoupled rows taken out and the slab, interfaces and joints
 //! factored apart (`reduced_amg`, "Linear solvers on the seed dam") it carries the medium
-//! dam in 0.59–0.64 of the canonical LU's time with 0.37–0.39 of its memory per rank; its structure split
-//! is still a direct factorization, which grows with the slab's area, and its GMRES
-//! iterations grow with the height of the fill (measured up to fine fill_020); it is the
+//! dam in 0.59–0.64 of the canonical LU's time with about 0.4 of its memory per rank; its
+//! structure split is still a direct factorization, which grows with the slab's area, and its
+//! GMRES iterations grow with the height of the fill (measured up to fine fill_020); it is the
 //! only kind that would scale in both work and memory; (3) only after those, the medium mesh's
 //! partition surfaces (more ghost than owned nodes from 32 ranks on). The global mesh on every
 //! rank and METIS on rank 0 cost seconds and tens of MB at the fine size.
