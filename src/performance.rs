@@ -500,8 +500,8 @@
 //!   speed-up of 2.20 and 2.06, a parallel efficiency T₁/(2·T₂) of 1.10 and 1.03: the
 //!   assembly splits evenly (2.08 and 1.93 times faster), the linear solves more than evenly
 //!   (2.38 and 2.26 times; each rank's share of the multigrid and of the structure's factors
-//!   is smaller). Memory per rank falls from 390 to 257 MiB, not to half: every rank reads the
-//!   whole mesh.
+//!   is smaller). Memory per rank falls from 390 to 257 MiB, not to half (every rank holds the
+//!   whole mesh, among other things; not measured apart).
 //!
 //!   The fine hyperbolic scene's first 20 fill stages, the same way (the same build; the
 //!   reduced multigrid with `--linear-solver reduced_amg -ksp_rtol 1e-7`, default options
