@@ -723,10 +723,8 @@ fn the_extrapolating_time_step_predictor_saves_newton_iterations_for_the_same_qu
 /// Writes `<yaml>_tight.yaml` into `d`: `<yaml>.yaml` with the Newton tolerance 1e-5 tightened
 /// to 1e-6.
 fn tightened_newton(d: &Path, yaml: &str) {
-    let scene = std::fs::read_to_string(d.join(format!("{yaml}.yaml"))).unwrap();
-    let tight = scene.replace("newton_tol: 1.0e-5,", "newton_tol: 1.0e-6,");
-    assert_ne!(scene, tight, "{yaml}.yaml holds 'newton_tol: 1.0e-5,'");
-    std::fs::write(d.join(format!("{yaml}_tight.yaml")), tight).unwrap();
+    let (source, name) = (format!("{yaml}.yaml"), format!("{yaml}_tight.yaml"));
+    variant_of(d, &source, &name, "newton_tol: 1.0e-5,", "newton_tol: 1.0e-6,");
 }
 
 /// A time step's Newton corrections take the full step when it lowers ‖F‖
@@ -831,9 +829,15 @@ fn dam_quake_and_variant(
 
 /// Writes `name` into `d`: `dam.yaml` with `from` replaced by `to` (which must occur).
 fn scene_variant(d: &Path, name: &str, from: &str, to: &str) {
-    let scene = std::fs::read_to_string(d.join("dam.yaml")).unwrap();
+    variant_of(d, "dam.yaml", name, from, to);
+}
+
+/// Writes `name` into `d`: the scene `source` of `d` with `from` replaced by `to` (which must
+/// occur).
+fn variant_of(d: &Path, source: &str, name: &str, from: &str, to: &str) {
+    let scene = std::fs::read_to_string(d.join(source)).unwrap();
     let variant = scene.replace(from, to);
-    assert_ne!(scene, variant, "dam.yaml holds '{from}'");
+    assert_ne!(scene, variant, "{source} holds '{from}'");
     std::fs::write(d.join(name), variant).unwrap();
 }
 
