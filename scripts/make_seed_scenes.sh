@@ -52,10 +52,10 @@ declare -A mesh=(
 # layer (mesh.cfrd.fill_load_steps: 2) its first 9 fill stages took 211 s on 2 ranks, with 8
 # steps 110 s (a new layer's GP points start unconfined, where the model is softest).
 # The medium mesh uses the reduced multigrid (solver.linear_solver: reduced_amg, issue 20: the
-# slab, interfaces and joints factored by MUMPS over the ranks, GAMG on the fill, inexact
-# Newton): on 2 ranks its whole runs took 0.59-0.64 of the canonical LU's time with 0.37-0.39
-# of its memory per rank, and their slab tables agree with the LU's to 0.011 MPa and 0.003 cm
-# for the three interface models (cfrd::performance, "Linear solvers on the seed dam"). For the
+# slab, interfaces and joints factored by SuperLU_DIST over the ranks, GAMG on the fill,
+# inexact Newton; the same bits at every run on the same ranks): on 2 ranks its whole runs took
+# 0.59-0.64 of the canonical LU's time with about 0.4 of its memory per rank, and their slab
+# tables agree with the LU's to 0.011 MPa and 0.003 cm for the three interface models (cfrd::performance, "Linear solvers on the seed dam"). For the
 # canonical LU's results (the same bit for bit on any rank count) run them with
 # `--linear-solver canonical_lu -canonical_pc_factor_mat_solver_type mumps`. Their quake scenes
 # keep the canonical LU with MUMPS (below).
