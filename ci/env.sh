@@ -8,11 +8,6 @@ export OMPI_MCA_rmaps_base_oversubscribe=1
 export OMPI_MCA_hwloc_base_binding_policy=none
 export OMPI_MCA_btl_vader_single_copy_mechanism=none
 export MPIEXEC_TIMEOUT=${MPIEXEC_TIMEOUT:-600}
-# Tests run side by side, so two 2-rank jobs share 2 cores; Open MPI does not see that and
-# spins while a rank waits. SuperLU_DIST (reduced_amg's structure factorization) waits often:
-# the embedded default dam to stage 5, two such jobs at once, took 231 s each spinning and 15 s
-# yielding (7 s alone, with or without yielding; measured on 2 cores).
-export OMPI_MCA_mpi_yield_when_idle=${OMPI_MCA_mpi_yield_when_idle:-1}
 # OpenBLAS picks its kernels by CPU (AVX-512 "SkylakeX" on recent Intel, "Zen" on AMD, generic
 # SSE3 "Prescott" on a virtual CPU it does not recognise), their sums round differently, and the
 # GP rockfill's loading path carries those last bits to 1e-3 of the coarse seed dam's slab

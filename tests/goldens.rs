@@ -26,9 +26,9 @@
 //! **BLAS kernels.** The last bits do depend on OpenBLAS's kernels (the GMRES sums with lagged
 //! factors), and the GP rockfill's loading path carries them far: on a virtual CPU that
 //! OpenBLAS did not recognise, its generic `Prescott` kernels moved the slab stresses by
-//! 1.4e-3 and the Newton iterations of several steps. The goldens were made with its AVX-512
-//! kernels (`SkylakeX`, `Cooperlake` and `SapphireRapids` reproduce them, `Haswell` does not),
-//! which `ci/env.sh` selects on any CPU with AVX-512 (`OPENBLAS_CORETYPE`).
+//! 1.4e-3 and the Newton iterations of several steps. The goldens are made with its AVX2
+//! kernels (`Haswell`; `Zen` gives the same bits, the AVX-512 `SkylakeX` others), which
+//! `ci/env.sh` selects on any CPU with AVX2 and FMA (`OPENBLAS_CORETYPE`).
 //! Counts (Newton iterations per step, steps, cut-backs, open and slipping interface points)
 //! must be equal: a count that moves is a changed path. Iteration counts are fragile
 //! goldens (style guide G.8); they are here because the issue asks for them, and a change of
