@@ -243,6 +243,35 @@
 //! * **Why the cap is off by default** (commit 9d6727b): with `integration_tol_ratio` on, two GP
 //!   dam tests of `tests/cfrd_dam.rs` (one load step per stage) exhaust the substep limit; a cap
 //!   applied only to a step that stalls made the same tests take 504 s instead of 117 s.
+//! * **Where the assembly goes: substeps, set by STOL** (issue 20; commit f99ca09's code).
+//!   Counted with a counter added for the purpose to
+//!   [`crate::material::gp_integrator::integrate`] (not committed), the medium hyperbolic
+//!   scene's first 6 stages on 1 rank (`cfrd run inputs/scenes/seed_medium_hyperbolic.yaml -o
+//!   OUT -q --stop-after-stage 6`): 2,446,080 integrations of a nonzero increment, 17,350,220
+//!   accepted and 2,849,735 rejected substeps, 7.1 and 1.2 per integration (`perf`: the GP
+//!   functions and `pow` were some 40 % of the samples, the rest the linear solves, the
+//!   element matrices and their copies). The substep size is set by the error (spec models
+//!   §8.2), not by its growth limit: with the growth per accepted substep capped at 2 or 5
+//!   instead of 1.1 there were 7.1 and 7.1 accepted substeps per integration again. With STOL
+//!   1e-3 (the rockfill, transition and cushion given `integration: { stol: 1.0e-3 }`) there
+//!   were 2.6 accepted and 0.65 rejected; the assembly took 14.5 s instead of 27.3 s, the run
+//!   31.3 s instead of 45.1 s. The whole scene, 2 ranks, the same build with the counter,
+//!   alone on the machine, one run after the other (`/usr/bin/time -v mpirun -n 2 cfrd run
+//!   SCENE -o OUT -q`, `summary.json`):
+//!
+//!   | STOL of the GP rockfill | wall time | assembly | linear solves | Newton iterations | GMRES iterations | cut-backs | peak memory per rank |
+//!   |---|---|---|---|---|---|---|---|
+//!   | 1e-4 (the scene) | 484.8 s | 242.5 s | 229.9 s | 1,155 | 13,770 | 0 | 255 / 251 MiB |
+//!   | 1e-3 | 421.1 s | 180.4 s | 228.1 s | 1,169 | 13,920 | 0 | 255 / 254 MiB |
+//!
+//!   0.87 of the time (the assembly 0.74; on 2 ranks it also holds the waits of the less
+//!   loaded rank); the slab table moved by 0.0047 MPa (σ_s, 5.4e-4 of its largest value),
+//!   0.0086 MPa (σ_a, 1.3e-3) and 0.003 cm (2.2e-4). The scenes keep STOL 1e-4: "Accuracy
+//!   against cost" below found STOL 1e-3 twice as far from the reference on the coarse mesh, and the
+//!   gain does not bring the medium scene near the issue's 3 min. The 1e-4 run gave the
+//!   same bits as run A of "Not reproducible bit for bit with MUMPS" below, two days and
+//!   several commits earlier (`cfrd compare --tolerance 0`: 0), in 484.8 s instead of
+//!   396.9 s: the machine ran 1.2 times slower that day.
 //!
 //! ## Linear solvers on the seed dam
 //!
@@ -548,6 +577,24 @@
 //!   noise" (STOL 1e-4 above `newton_tol` 1e-5), which cfrd's own message names; whether the
 //!   inexact corrections make it likelier than the LU's exact ones was not measured. The rest of the run (fill_063 to the
 //!   impoundment, with slab stage II, the hard case) was not run.
+//! * **Hard cases: one load step per stage** (issue 20, acceptance 4; commit f99ca09). The
+//!   coarse hyperbolic and GP-interface scenes with `load_steps: 1` (every stage in one step,
+//!   which forces cut-backs), 2 ranks, one run each, one after the other alone on the machine
+//!   (`/usr/bin/time mpirun -n 2 cfrd run SCENE -o OUT -q --linear-solver S`, `summary.json`):
+//!
+//!   | scene | solver | wall time | Newton iterations | cut-backs | GMRES iterations | builds or factorizations | peak memory per rank |
+//!   |---|---|---|---|---|---|---|---|
+//!   | hyperbolic | canonical LU | 85.4 s | 370 | 29 | 5,530 | 203 | 85 / 85 MiB |
+//!   | hyperbolic | reduced multigrid | 90.8 s | 396 | 30 | 9,569 | 45 | 77 / 75 MiB |
+//!   | GP interface | canonical LU | 115.2 s | 413 | 32 | 6,511 | 245 | 85 / 84 MiB |
+//!   | GP interface | reduced multigrid | 124.3 s | 439 | 33 | 11,144 | 60 | 78 / 76 MiB |
+//!
+//!   Both carry every stage, cutting back about as often; the slab tables of the two
+//!   solvers agree to 0.0014 MPa (σ_s), 0.0006 MPa (σ_a) and 0.0007 cm (hyperbolic) and
+//!   0.0011 MPa, 0.0012 MPa and 0.0007 cm (GP interface). On this small mesh (3,360 DOFs)
+//!   the assembly is 87–93 % of every run, so the solver hardly moves the time (single runs,
+//!   5–8 % apart). The fine mesh's slab stage II, the other hard case, was not run with the
+//!   reduced multigrid.
 //! * **Parallel efficiency on the medium mesh** (issue 20, acceptance 2; the same build and
 //!   scene as the table above, canonical LU, `/usr/bin/time -v mpirun -n 1 cfrd run …` alone
 //!   on the machine right after the 2-rank runs; `phase_seconds` of `summary.json`):
