@@ -303,7 +303,7 @@
 //!   same rank count give the same bits, other rank counts other bits. Each rank runs one
 //!   OpenMP thread inside SuperLU_DIST unless `OMP_NUM_THREADS` is set (one thread per core
 //!   on every rank would compete for the cores of the other ranks). With more ranks than
-//!   cores (or jobs side by side), set `OMPI_MCA_mpi_yield_when_idle=1`, as `ci/test.sh` does:
+//!   cores (or jobs side by side), set `OMPI_MCA_mpi_yield_when_idle=1`, as the tests do:
 //!   a waiting rank then yields its core instead of spinning on it (the default dam to stage 5,
 //!   two 2-rank jobs on 2 cores: 231 s each spinning, 15 s yielding). The corrections are
 //!   solved only as tightly as Newton needs (Eisenstat–Walker; `rtol` is not used) and the

@@ -30,6 +30,11 @@ fn mpi_command(np: usize) -> Command {
     .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
     .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
     .env("OMPI_MCA_btl_vader_single_copy_mechanism", "none")
+    // Tests run side by side, so two 2-rank jobs share 2 cores; Open MPI does not see that
+    // and spins while a rank waits, and SuperLU_DIST (reduced_amg's structure) waits often:
+    // the default dam to stage 5, two jobs at once, 231 s each spinning, 15 s yielding (7 s
+    // alone). CI once hit the 300-s limit so.
+    .env("OMPI_MCA_mpi_yield_when_idle", "1")
     .stdin(Stdio::null());
     cmd
 }
