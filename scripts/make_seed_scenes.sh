@@ -55,8 +55,8 @@ declare -A mesh=(
 # slab, interfaces and joints factored by SuperLU_DIST over the ranks, GAMG on the fill,
 # inexact Newton; the same bits at every run on the same ranks): on 2 ranks its whole runs took
 # 0.59-0.64 of the canonical LU's time with about 0.4 of its memory per rank, and their slab
-# tables agree with the LU's to 0.011 MPa and 0.003 cm for the three interface models (cfrd::performance, "Linear solvers on the seed dam"). For the
-# canonical LU's results (the same bit for bit on any rank count) run them with
+# tables agree with the LU's to 0.011 MPa and 0.003 cm for the three interface models
+# (cfrd::performance, "Linear solvers on the seed dam"). For the canonical LU's results (the same bit for bit on any rank count) run them with
 # `--linear-solver canonical_lu -canonical_pc_factor_mat_solver_type mumps`. Their quake scenes
 # keep the canonical LU with MUMPS (below).
 declare -A solver=(

@@ -11,7 +11,7 @@
 # Usage: scripts/make_seed_static_figures.sh [RUN_DIR]
 #   RUN_DIR (default: a new temporary directory) keeps the runs; when RUN_DIR/<model>_<n>
 #   already holds a finished run (summary.json), that run is not repeated.
-#   MEDIUM=1 also runs the three medium scenes on 2 ranks (RUN_DIR/medium_<model>_2, each 7-8
+#   MEDIUM=1 also runs the three medium scenes on 2 ranks (RUN_DIR/medium_<model>_2, each 7-10
 #   minutes on 2 cores with their reduced multigrid), overlays their slab profiles as
 #   seed_medium_slab.png, copies
 #   their figures as seed_medium_<model>_fig*.png and adds their rows to seed_static_runs.csv.
