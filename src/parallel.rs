@@ -136,3 +136,32 @@ pub fn exact_sum(world: &SimpleCommunicator, local: impl Iterator<Item = f64> + 
 pub fn exact_norm2(world: &SimpleCommunicator, local: &[f64]) -> f64 {
     exact_sum(world, local.iter().map(|v| v * v)).sqrt()
 }
+
+/// An `mpirun -n np` command for a child job on a small shared machine, as the tests start
+/// theirs (`spec/stack.md` §8 pattern B): as root, oversubscribed, unbound, with a time limit
+/// of `timeout_seconds`, without the variables of an MPI singleton parent (a child `mpirun`
+/// that inherits them fails), and with the ranks yielding while they wait. Tests run side by
+/// side, so two 2-rank jobs share 2 cores; Open MPI does not see that and spins while a rank
+/// waits, and SuperLU_DIST (the structure of `reduced_amg`) waits often: the embedded default
+/// dam to stage 5, two jobs at once, took 191–231 s each spinning and 15 s yielding (7 s
+/// alone). The caller adds the program and its arguments.
+pub fn mpirun_command(np: usize, timeout_seconds: u32) -> std::process::Command {
+    let mut cmd = std::process::Command::new("mpirun");
+    for (key, _) in std::env::vars_os() {
+        let key = key.to_string_lossy();
+        if ["OMPI_", "PMIX_", "OPAL_", "ORTE_"]
+            .iter()
+            .any(|p| key.starts_with(p))
+        {
+            cmd.env_remove(&*key);
+        }
+    }
+    cmd.args(["-n", &np.to_string(), "--oversubscribe", "--bind-to", "none"])
+        .args(["--timeout", &timeout_seconds.to_string()])
+        .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
+        .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
+        .env("OMPI_MCA_btl_vader_single_copy_mechanism", "none")
+        .env("OMPI_MCA_mpi_yield_when_idle", "1")
+        .stdin(std::process::Stdio::null());
+    cmd
+}

@@ -6,7 +6,6 @@
 //! at its end and a panic on any rank aborts the whole job instead of hanging it.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
 use std::sync::{Mutex, MutexGuard};
 
 use mpi::environment::Universe;
@@ -59,34 +58,10 @@ fn finalize() {
 /// Runs the test `name` of this binary on `n` ranks and checks that every rank passed.
 fn launch(name: &str, n: usize, extra: &[&str]) -> String {
     let exe = std::env::current_exe().expect("test binary path");
-    let mut command = Command::new("mpirun");
-    // A process that already ran MPI_Init as a singleton has OpenMPI variables in its
-    // environment; mpirun must not inherit them.
-    for (key, _) in std::env::vars_os() {
-        let key = key.to_string_lossy();
-        if ["OMPI_", "PMIX_", "OPAL_", "ORTE_"]
-            .iter()
-            .any(|p| key.starts_with(p))
-        {
-            command.env_remove(&*key);
-        }
-    }
-    let output = command
-        .args([
-            "-n",
-            &n.to_string(),
-            "--allow-run-as-root",
-            "--oversubscribe",
-            "--bind-to",
-            "none",
-        ])
-        .args(["--timeout", "120"])
+    let output = crate::parallel::mpirun_command(n, 120)
         .arg(exe)
         .args([name, "--exact", "--nocapture", "--test-threads=1"])
         .args(extra)
-        .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
-        .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
-        .stdin(Stdio::null())
         .output()
         .expect("mpirun (openmpi-bin) must be installed to run the MPI tests");
     let stdout = String::from_utf8_lossy(&output.stdout).into_owned();

@@ -9,34 +9,9 @@ pub fn cfrd_bin() -> PathBuf {
     PathBuf::from(env!("CARGO_BIN_EXE_cfrd"))
 }
 
-/// Environment for mpirun as root, oversubscribed, unbound (stack.md §8), without the
-/// variables of an MPI singleton parent (they make a child mpirun fail).
+/// `mpirun -n np` as the tests start it, with a 300-s limit ([`cfrd::parallel::mpirun_command`]).
 fn mpi_command(np: usize) -> Command {
-    let mut cmd = Command::new("mpirun");
-    for (k, _) in std::env::vars() {
-        if k.starts_with("OMPI_") || k.starts_with("PMIX_") {
-            cmd.env_remove(k);
-        }
-    }
-    cmd.args([
-        "-n",
-        &np.to_string(),
-        "--oversubscribe",
-        "--bind-to",
-        "none",
-        "--timeout",
-        "300",
-    ])
-    .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
-    .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
-    .env("OMPI_MCA_btl_vader_single_copy_mechanism", "none")
-    // Tests run side by side, so two 2-rank jobs share 2 cores; Open MPI does not see that
-    // and spins while a rank waits, and SuperLU_DIST (reduced_amg's structure) waits often:
-    // the default dam to stage 5, two jobs at once, 231 s each spinning, 15 s yielding (7 s
-    // alone). CI once hit the 300-s limit so.
-    .env("OMPI_MCA_mpi_yield_when_idle", "1")
-    .stdin(Stdio::null());
-    cmd
+    cfrd::parallel::mpirun_command(np, 300)
 }
 
 /// Runs `cfrd ARGS` under `mpirun -n np` in `dir`.
