@@ -56,6 +56,11 @@ for ((j = k; j >= 1; j--)); do
         break
     fi
 done
+# a part that was killed leaves the file it was writing under a temporary name (as large as its
+# results.h5, while its results.h5 and checkpoint.h5 stay whole): nothing reads it, so it goes
+for stale in "$out"/part_*/.*.partial-*; do
+    [ -e "$stale" ] && { echo "removing $stale (left by a killed part)"; rm -f "$stale"; }
+done
 part="$out/part_$((k + 1))"
 log="$part.log"
 echo "part $((k + 1)): $part (log $log)"
