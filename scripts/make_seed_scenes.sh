@@ -26,7 +26,7 @@ declare -A mesh=(
 # 100 s); these runs factored the whole matrix, the constrained and unplaced DOFs included. The
 # canonical LU now splits those rows off (linalg::petsc::CanonicalLu), which keeps the
 # factorization to the placed mesh and makes MUMPS's results the same on 1 and 2 ranks too.
-# The fine mesh (256k DOFs) uses the same solver: on 2 ranks its first 8 fill stages took 2.0 min
+# The fine mesh (256k DOFs) used the same solver until issue 20: on 2 ranks its first 8 fill stages took 2.0 min
 # and its first 15 8.3 min (with the partition balanced per construction band; with the factors
 # reused within a stage, solver.reuse_factorization, the first 8 took 1.6 min and the first 14
 # 4.6 min), where BoomerAMG
@@ -51,18 +51,20 @@ declare -A mesh=(
 # layers are 2 m thick, yet fewer steps per layer cost more there too: with two steps per fill
 # layer (mesh.cfrd.fill_load_steps: 2) its first 9 fill stages took 211 s on 2 ranks, with 8
 # steps 110 s (a new layer's GP points start unconfined, where the model is softest).
-# The medium mesh uses the reduced multigrid (solver.linear_solver: reduced_amg, issue 20: the
-# slab, interfaces and joints factored by SuperLU_DIST over the ranks, GAMG on the fill,
-# inexact Newton; the same bits at every run on the same ranks): on 2 ranks its whole runs took
-# 0.59-0.64 of the canonical LU's time with about 0.4 of its memory per rank, and their slab
-# tables agree with the LU's to 0.011 MPa and 0.003 cm for the three interface models
+# The medium and fine meshes use the reduced multigrid (solver.linear_solver: reduced_amg, issue
+# 20: the slab, interfaces and joints factored by SuperLU_DIST over the ranks, GAMG on the fill,
+# inexact Newton; the same bits at every run on the same ranks): on 2 ranks the medium scenes'
+# whole runs took 0.59-0.64 of the canonical LU's time with about 0.4 of its memory per rank,
+# and their slab tables agree with the LU's to 0.011 MPa and 0.003 cm for the three interface
+# models; the fine hyperbolic scene's whole run took 2.15 h with 1.6 GiB per rank, slab stage II
+# without a cut-back, and its fill_051 restarted on either solver gave the same fields to 3e-4
 # (cfrd::performance, "Linear solvers on the seed dam"). For the canonical LU's results (the same bit for bit on any rank count) run them with
 # `--linear-solver canonical_lu -canonical_pc_factor_mat_solver_type mumps`. Their quake scenes
 # keep the canonical LU with MUMPS (below).
 declare -A solver=(
   [coarse]="solver: { newton_tol: 1.0e-5, newton_max_iterations: 15, load_steps: 8, linear_solver: canonical_lu }"
   [medium]="solver: { newton_tol: 1.0e-5, newton_max_iterations: 15, load_steps: 8, linear_solver: reduced_amg }"
-  [fine]="solver: { newton_tol: 1.0e-5, newton_max_iterations: 15, load_steps: 8, linear_solver: canonical_lu, petsc_options: \"-canonical_pc_factor_mat_solver_type mumps\" }"
+  [fine]="solver: { newton_tol: 1.0e-5, newton_max_iterations: 15, load_steps: 8, linear_solver: reduced_amg }"
 )
 declare -A note=(
   [coarse]="coarse mesh (panels 30 m, wider than the seed's 12-18 m)"

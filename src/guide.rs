@@ -134,7 +134,7 @@
 //! |---|---|---|
 //! | coarse | 8 fill layers, 30 m panels, 3 impoundment stages | canonical LU (PETSc's LU) |
 //! | medium | 30 fill layers, 15 m panels, 4 impoundment stages | reduced multigrid (`reduced_amg`); its quake scenes canonical LU with MUMPS |
-//! | fine | 86 fill layers (as the seed), 2 elements per panel, 6 impoundment stages | canonical LU with MUMPS; run it [in parts](#runs-in-parts) |
+//! | fine | 86 fill layers (as the seed), 2 elements per panel, 6 impoundment stages | reduced multigrid (`reduced_amg`); about 2 h on 2 ranks, run it [in parts](#runs-in-parts) |
 //!
 //! All of them use 8 load steps per stage, `newton_tol: 1.0e-5` (above the noise of the GP
 //! substepping, see [nonlinear runs](#nonlinear-runs)) and at most 15 Newton iterations per
@@ -458,7 +458,8 @@
 //! (`--stop-after-stage +N`); without it a part runs until it ends or is killed. Arguments after
 //! `--` go to every part (e.g. `-- --checkpoint step`). `OUT/parts.csv` lists each part's first
 //! and last stage, wall time, peak memory of the largest rank and exit code; `OUT/part_<k>.log`
-//! is its log. `cfrd profiles` draws the seed figures over the parts, so the probe histories
+//! is its log. A part that was killed leaves its half-written results under a temporary name
+//! (`.results.h5.partial-<pid>`); the next call removes it. `cfrd profiles` draws the seed figures over the parts, so the probe histories
 //! cover all their stages. On a cluster, submit the same call as a job until it reports that
 //! the run has finished, with `BIN` pointing at an installed `cfrd`.
 //!
