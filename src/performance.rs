@@ -619,9 +619,15 @@
 //!   reduced multigrid 83.4 s, 30 Newton iterations, 0.95 / 0.99 GiB (4.5 times faster with a
 //!   quarter of the memory). The fields differ by at most 3.2e-4 of their largest value
 //!   (`cfrd compare`: stress 3.2e-4, strain 1.4e-4, displacement 5.9e-5, interface traction
-//!   3.1e-6), the slab table (`fig08_slab_stress.csv`) by 5 Pa and 1e-7 m. A whole fine run on
-//!   the canonical LU with this build, for the issue's comparison of the slab table after
-//!   impoundment, was not made (it took 5.7 h with 10 GiB per rank before).
+//!   3.1e-6), the slab table (`fig08_slab_stress.csv`) by 5 Pa and 1e-7 m. The same for
+//!   `impound_1` from the checkpoint after `slab_3` (the canonical LU's run had a `cargo doc`
+//!   build at the lowest priority beside it for about a minute): canonical LU 1,249.8 s, 19
+//!   Newton iterations, 6.0 GiB per rank; reduced multigrid 115.9 s, 19 Newton iterations,
+//!   1.32 / 1.36 GiB (10.8 times faster with under a quarter of the memory); the fields differ by at
+//!   most 4.6e-5 of their largest value (interface traction; stress 3.0e-5, displacement
+//!   1.8e-6), the slab table by 42 Pa and 7e-7 m. A whole fine run on the canonical LU with
+//!   this build, for the issue's comparison of the slab table after the whole impoundment, was
+//!   not made (it took 5.7 h with 10 GiB per rank before).
 //! * **Hard cases: one load step per stage** (issue 20, acceptance 4; commit f99ca09). The
 //!   coarse hyperbolic and GP-interface scenes with `load_steps: 1` (every stage in one step,
 //!   which forces cut-backs), 2 ranks, one run each, one after the other alone on the machine
