@@ -143,8 +143,8 @@ pub fn exact_norm2(world: &SimpleCommunicator, local: &[f64]) -> f64 {
 /// that inherits them fails), and with the ranks yielding while they wait. Tests run side by
 /// side, so two 2-rank jobs share 2 cores; Open MPI does not see that and spins while a rank
 /// waits, and SuperLU_DIST (the structure of `reduced_amg`) waits often: the embedded default
-/// dam to stage 5, two jobs at once, took 191–231 s each spinning and 15 s yielding (7 s
-/// alone). The caller adds the program and its arguments.
+/// dam to stage 5, two jobs at once, took 231, 191 and 42 s each in three pairs spinning and
+/// 15 s yielding (7 s alone). The caller adds the program and its arguments.
 pub fn mpirun_command(np: usize, timeout_seconds: u32) -> std::process::Command {
     let mut cmd = std::process::Command::new("mpirun");
     for (key, _) in std::env::vars_os() {
