@@ -460,8 +460,9 @@
 //! and last stage, wall time, peak memory of the largest rank and exit code; `OUT/part_<k>.log`
 //! is its log. A part that was killed leaves its half-written results under a temporary name
 //! (`.results.h5.partial-<pid>`); the next call removes it. `cfrd profiles` draws the seed
-//! figures over the parts, so the probe histories cover all their stages. On a cluster, submit the same call as a job until it reports that
-//! the run has finished, with `BIN` pointing at an installed `cfrd`.
+//! figures over the parts, so the probe histories cover all their stages. On a cluster,
+//! submit the same call as a job until it reports that the run has finished, with `BIN`
+//! pointing at an installed `cfrd`.
 //!
 //! ## Outputs
 //!
