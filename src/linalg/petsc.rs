@@ -459,6 +459,114 @@ impl CanonicalProduct {
     }
 }
 
+/// Where the owned rows of an assembled AIJ matrix keep their entries ([`Matrix::csr_layout`]):
+/// the diagonal block (the columns this rank owns) and the off-diagonal block, each in
+/// compressed rows with increasing global columns.
+#[derive(Debug, Clone, Default)]
+pub struct CsrLayout {
+    /// The diagonal block.
+    pub diag: CsrPart,
+    /// The off-diagonal block (no entries on one rank).
+    pub off: CsrPart,
+}
+
+/// One block of a [`CsrLayout`]: entry `k` of local row `r` (`rows[r] <= k < rows[r + 1]`)
+/// has global column `cols[k]`.
+#[derive(Debug, Clone, Default)]
+pub struct CsrPart {
+    /// Row starts, one more than the owned rows.
+    pub rows: Vec<i32>,
+    /// Global column of every entry.
+    pub cols: Vec<i32>,
+}
+
+impl CsrPart {
+    /// The rows of the sequential AIJ matrix `m`, its local columns mapped by `global`.
+    fn of(m: p::Mat, global: impl Fn(i32) -> i32) -> Result<CsrPart, PetscError> {
+        let (mut n, mut ia, mut ja, mut done) = (0, null(), null(), p::PETSC_FALSE);
+        call!(MatGetRowIJ(
+            m,
+            0,
+            p::PETSC_FALSE,
+            p::PETSC_FALSE,
+            &mut n,
+            &mut ia,
+            &mut ja,
+            &mut done
+        ))?;
+        if done != p::PETSC_TRUE {
+            return Err(PetscError {
+                code: 0,
+                call: "MatGetRowIJ",
+                message: "the matrix gives no compressed rows".into(),
+            });
+        }
+        // SAFETY: PETSc returned n + 1 row starts and rows[n] column indices, valid until
+        // MatRestoreRowIJ.
+        let part = unsafe {
+            let rows = std::slice::from_raw_parts(ia, n as usize + 1).to_vec();
+            let nnz = rows[n as usize] as usize;
+            let cols = match nnz {
+                0 => Vec::new(),
+                _ => std::slice::from_raw_parts(ja, nnz)
+                    .iter()
+                    .map(|&j| global(j))
+                    .collect(),
+            };
+            CsrPart { rows, cols }
+        };
+        call!(MatRestoreRowIJ(
+            m,
+            0,
+            p::PETSC_FALSE,
+            p::PETSC_FALSE,
+            &mut n,
+            &mut ia,
+            &mut ja,
+            &mut done
+        ))?;
+        Ok(part)
+    }
+}
+
+/// The values of a sequential AIJ matrix, borrowed from PETSc until [`SeqValues::restore`].
+struct SeqValues {
+    m: p::Mat,
+    ptr: *mut f64,
+    len: usize,
+}
+
+impl SeqValues {
+    fn get(m: p::Mat) -> Result<SeqValues, PetscError> {
+        // SAFETY: MatInfo holds only doubles, for which zero bits are a valid value.
+        let mut info: p::MatInfo = unsafe { std::mem::zeroed() };
+        call!(MatGetInfo(m, p::MAT_LOCAL, &mut info))?;
+        let mut ptr: *mut f64 = null_mut();
+        call!(MatSeqAIJGetArray(m, &mut ptr))?;
+        Ok(SeqValues {
+            m,
+            ptr,
+            len: info.nz_used as usize,
+        })
+    }
+
+    fn slice(&mut self) -> &mut [f64] {
+        if self.len == 0 || self.ptr.is_null() {
+            return &mut [];
+        }
+        // SAFETY: PETSc lent `len` values (the used nonzeros) until MatSeqAIJRestoreArray.
+        unsafe { std::slice::from_raw_parts_mut(self.ptr, self.len) }
+    }
+
+    fn restore(mut self) -> Result<(), PetscError> {
+        call!(MatSeqAIJRestoreArray(self.m, &mut self.ptr))
+    }
+}
+
+/// The off-diagonal block of an MPIAIJ matrix's owned rows and the global column of each of
+/// its local columns.
+type OffDiagonal = (p::Mat, *const i32);
+
 /// A distributed sparse matrix (MPIAIJ with block size) with exact preallocation.
 pub struct Matrix {
     raw: p::Mat,
@@ -540,6 +648,75 @@ impl Matrix {
             x.raw,
             b.raw
         ))
+    }
+
+    /// The diagonal and off-diagonal blocks of the owned rows (PETSc's MPIAIJ split; on one
+    /// rank the whole matrix is the diagonal block) and the global column of every local
+    /// column of the off-diagonal block.
+    fn owned_blocks(&self) -> Result<(p::Mat, Option<OffDiagonal>), PetscError> {
+        let mut seq = p::PETSC_FALSE;
+        call!(PetscObjectTypeCompare(
+            self.raw as p::PetscObject,
+            p::MATSEQAIJ.as_ptr() as *const c_char,
+            &mut seq
+        ))?;
+        if seq == p::PETSC_TRUE {
+            return Ok((self.raw, None));
+        }
+        let (mut ad, mut ao, mut colmap): (p::Mat, p::Mat, *const i32) = (null_mut(), null_mut(), null());
+        call!(MatMPIAIJGetSeqAIJ(self.raw, &mut ad, &mut ao, &mut colmap))?;
+        Ok((ad, Some((ao, colmap))))
+    }
+
+    /// Where the entries of the owned rows are stored ([`CsrLayout`]). The pattern must be
+    /// final (assembled, no new nonzeros allowed), as [`Matrix::aij`] makes it.
+    pub fn csr_layout(&self) -> Result<CsrLayout, PetscError> {
+        let (mut c_lo, mut c_hi) = (0, 0);
+        call!(MatGetOwnershipRangeColumn(self.raw, &mut c_lo, &mut c_hi))?;
+        let (ad, off) = self.owned_blocks()?;
+        let diag = CsrPart::of(ad, |j| j + c_lo)?;
+        let off = match off {
+            None => CsrPart {
+                rows: vec![0; diag.rows.len()],
+                cols: Vec::new(),
+            },
+            Some((ao, colmap)) => {
+                let n = CsrPart::of(ao, |j| j)?;
+                let n_cols = n.cols.iter().max().map_or(0, |&m| m as usize + 1);
+                // SAFETY: `colmap` maps each of the off-diagonal block's columns (all below
+                // n_cols) to its global column while the matrix lives.
+                let colmap = unsafe { std::slice::from_raw_parts(colmap, n_cols) };
+                CsrPart {
+                    cols: n.cols.iter().map(|&j| colmap[j as usize]).collect(),
+                    rows: n.rows,
+                }
+            }
+        };
+        Ok(CsrLayout { diag, off })
+    }
+
+    /// Overwrites the values of the owned rows: `f` gets the values of the diagonal and of the
+    /// off-diagonal block in the order of [`Matrix::csr_layout`] (it sees the old values), then
+    /// the matrix is assembled. For a pattern that is final and values set on owned rows only,
+    /// as the element assembly does; no communication but the assembly's own. Collective.
+    pub fn overwrite_values<R>(
+        &mut self,
+        f: impl FnOnce(&mut [f64], &mut [f64]) -> R,
+    ) -> Result<R, PetscError> {
+        let (ad, off) = self.owned_blocks()?;
+        let mut diag = SeqValues::get(ad)?;
+        let mut off = match off {
+            Some((ao, _)) => Some(SeqValues::get(ao)?),
+            None => None,
+        };
+        let r = f(diag.slice(), off.as_mut().map_or(&mut [][..], |o| o.slice()));
+        diag.restore()?;
+        if let Some(o) = off {
+            o.restore()?;
+        }
+        call!(MatSetOption(self.raw, p::MAT_NO_OFF_PROC_ENTRIES, p::PETSC_TRUE))?;
+        self.assemble()?;
+        Ok(r)
     }
 
     /// Zeroes the given global rows and columns and puts `diag` on the diagonal (no right-hand

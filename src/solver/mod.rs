@@ -56,6 +56,8 @@ mod staging;
 pub mod state;
 #[cfg(feature = "native")]
 pub mod step_control;
+#[cfg(feature = "native")]
+mod tangent_slots;
 
 #[cfg(feature = "native")]
 pub use error::SolveError;

@@ -18,6 +18,7 @@ use super::interface::InterfaceElements;
 use super::report::InterfaceCounts;
 use super::solid::{SolidBlock, Vector24};
 use super::state_codec;
+use super::tangent_slots::TangentSlots;
 use crate::element::hex8::Hex8Geometry;
 use crate::element::hex8_modes::{IncompatibleModes, SolidElement};
 use crate::element::interface8::Interface8Geometry;
@@ -96,6 +97,8 @@ pub struct Model<'a> {
     pub(super) elem_block: Vec<(usize, usize)>,
     /// The tangent (the Jacobian once the integrator's shifts and the constraints are in).
     pub(super) k: Matrix,
+    /// Where each evaluated element's entries of K are stored.
+    pub(super) slots: TangentSlots,
     /// Displacement of the current iterate.
     pub(super) u: Vector,
     /// Displacement of the committed state.
@@ -145,6 +148,7 @@ impl<'a> Model<'a> {
         })?;
         k.set_rigid_body_near_null_space(&coords)?;
         Self::preallocate_pattern(&mut k, mesh, &disc)?;
+        let slots = TangentSlots::new(k.csr_layout()?, &disc).map_err(SolveError::Collective)?;
         u.set_all(0.0)?;
         let mut u_committed = u.duplicate()?;
         u_committed.set_all(0.0)?;
@@ -160,6 +164,7 @@ impl<'a> Model<'a> {
             solid_geo,
             elem_block,
             k,
+            slots,
             u,
             u_committed,
             gather,
