@@ -12,9 +12,9 @@ use crate::parallel::{exact_sum, sum_u64};
 
 impl Model<'_> {
     /// Updates the trial states for the current `u` and assembles f_int and (with `want_k`)
-    /// K_t; with `trial_is_current` the solid trial states are known to be those of the
-    /// current `u` (the last evaluation was there), so f_int and K of the solid elements come
-    /// from them and their stored tangents without a second integration (the same values,
+    /// K_t; with `trial_is_current` the trial states are known to be those of the current
+    /// `u` (the last evaluation was there), so f_int and K of the solid and interface elements
+    /// come from them and their stored tangents without a second integration (the same values,
     /// since an update is a pure function of the committed state and the increment).
     /// The sums go straight into the owned entries of f_int and K ([`TangentSlots`]).
     /// Collective: the element loop stops at the first local failure, but the assembly calls
@@ -142,7 +142,12 @@ impl ElementLoop<'_> {
                 let geo = self.iface_geo[i]
                     .as_ref()
                     .expect("interface geometry built at set-up");
-                block.evaluate(be, geo, &d_u, want_k).map(|r| (r.f_int, r.k))
+                if self.trial_is_current {
+                    let r = block.evaluate_trial(be, geo);
+                    Ok((r.f_int, r.k.filter(|_| want_k)))
+                } else {
+                    block.evaluate(be, geo, &d_u, want_k).map(|r| (r.f_int, r.k))
+                }
             }
         };
         let e = self.disc.elements[i] as usize;

@@ -16,7 +16,7 @@ use crate::material::interface_hyperbolic::HyperbolicInterface;
 use crate::material::interface_mc::MohrCoulombInterface;
 use crate::material::joint::JointLaw;
 use crate::material::{InterfaceModel, InterfaceOutputs, InterfaceParams};
-use crate::tensor::Local3;
+use crate::tensor::{Local3, Tangent3};
 
 /// A law together with the states of its points.
 #[derive(Debug, Clone)]
@@ -25,6 +25,9 @@ pub struct LawStates<M: InterfaceModel> {
     pub model: M,
     /// 4 points per element, element-major, point `q` at node pair `q` (spec (E8)).
     pub store: QpStore<M::State>,
+    /// The tangent of every trial state (same layout as the store), so that a Jacobian at the
+    /// point of the last residual evaluation needs no second update.
+    pub trial_tangents: Vec<Tangent3>,
 }
 
 /// The interface laws a block can use, each with its states.
@@ -82,6 +85,7 @@ fn law_states<M: InterfaceModel>(model: M, n: usize, sigma_n0: f64) -> Result<La
     Ok(LawStates {
         model,
         store: QpStore::new(n * INTERFACE_POINTS, init),
+        trial_tangents: vec![Tangent3::zeros(); n * INTERFACE_POINTS],
     })
 }
 
@@ -122,6 +126,14 @@ impl InterfaceElements {
         with_law!(self, ls => evaluate_element(ls, e, geo, d_u, want_k))
     }
 
+    /// f_int and K of element `e` from its current trial states and their tangents, without
+    /// updating the law: the response [`InterfaceElements::evaluate`] gave for the last
+    /// increment, now with K (an update is a pure function of the committed state and the
+    /// jump, so the values are the same).
+    pub fn evaluate_trial(&self, e: usize, geo: &Interface8Geometry) -> InterfaceElementResponse {
+        with_law!(self, ls => trial_response(ls, e, geo))
+    }
+
     /// Whether the law's tangent is symmetric.
     pub fn symmetric_tangent(&self) -> bool {
         with_law!(self, ls => ls.model.symmetric_tangent())
@@ -151,17 +163,35 @@ fn evaluate_element<M: InterfaceModel>(
     want_k: bool,
 ) -> Result<InterfaceElementResponse, MaterialError> {
     let base = e * INTERFACE_POINTS;
-    let LawStates { model, store } = ls;
-    let resp = geo.evaluate(d_u, |q, d_jump: &Local3, _frame| {
-        let up = model.update(&store.committed[base + q], d_jump)?;
-        let t = M::traction(&up.state);
-        store.trial[base + q] = up.state;
-        Ok::<_, MaterialError>((t, up.tangent))
-    })?;
+    let jumps = geo.jumps(d_u);
+    let mut tractions = [Local3::zeros(); INTERFACE_POINTS];
+    for (q, jump) in jumps.iter().enumerate() {
+        let up = ls.model.update(&ls.store.committed[base + q], jump)?;
+        tractions[q] = M::traction(&up.state);
+        ls.store.trial[base + q] = up.state;
+        ls.trial_tangents[base + q] = up.tangent;
+    }
     Ok(InterfaceElementResponse {
-        f_int: resp.f_int,
-        k: want_k.then_some(resp.k),
+        f_int: geo.internal_force(&tractions),
+        k: want_k.then(|| geo.stiffness(&trial_tangents(ls, e))),
     })
+}
+
+/// The tangents of element `e`'s trial states.
+fn trial_tangents<M: InterfaceModel>(ls: &LawStates<M>, e: usize) -> [Tangent3; INTERFACE_POINTS] {
+    std::array::from_fn(|q| ls.trial_tangents[e * INTERFACE_POINTS + q])
+}
+
+fn trial_response<M: InterfaceModel>(
+    ls: &LawStates<M>,
+    e: usize,
+    geo: &Interface8Geometry,
+) -> InterfaceElementResponse {
+    let tractions = std::array::from_fn(|q| M::traction(&ls.store.trial[e * INTERFACE_POINTS + q]));
+    InterfaceElementResponse {
+        f_int: geo.internal_force(&tractions),
+        k: Some(geo.stiffness(&trial_tangents(ls, e))),
+    }
 }
 
 fn element_output<M: InterfaceModel>(ls: &LawStates<M>, e: usize) -> InterfaceElementOutput {

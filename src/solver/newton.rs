@@ -148,7 +148,7 @@ impl NewtonStep<'_, '_> {
     }
 
     /// Sets u = x and assembles f_int (and K if `want_k`) there; a material failure on any rank
-    /// is reported on all (collective). With `trial_is_current` the solid trial states are
+    /// is reported on all (collective). With `trial_is_current` the trial states are
     /// already those of x ([`Model::assemble`]).
     fn evaluate_at(&mut self, x: &Vector, want_k: bool, trial_is_current: bool) -> Result<bool, PetscError> {
         if !trial_is_current {
