@@ -122,15 +122,47 @@
 //! ## Newton iterations, load steps and the integration noise
 //!
 //! * **Predictor.** `solver.predictor: extrapolate` starts a static load step from the last
-//!   step's rate du/dλ ([`crate::solver::integrator::QuasiStatic`]). Coarse seed scenes, 2
+//!   step's rate du/dλ ([`crate::solver::integrator::QuasiStatic`]); the medium and fine seed
+//!   scenes use it (issue 20; `scripts/make_seed_scenes.sh`). Coarse seed scenes, 2
 //!   ranks, canonical LU, the slab with incompatible modes (commit 8cb1fcb's build, the scenes
 //!   with the key added, against `scripts/make_seed_static_figures.sh` at commit 902414d):
 //!   Newton iterations 490 → 400 (hyperbolic), 489 → 400 (Mohr–Coulomb) and 559 → 472 (GP
 //!   interface, with 9 cut-backs instead of 5), 16–18 % fewer; the slab table within 0.002 /
-//!   0.002 / 0.032 MPa and 0.001 cm. The runs shared the machine, so no wall time is claimed
-//!   here. It is not the seed scenes' default yet: its time saving is to be measured side by
-//!   side, and it forgets its rate at every step checkpoint (so that a restart repeats the
-//!   steps), which makes it idle under `--checkpoint step`.
+//!   0.002 / 0.032 MPa and 0.001 cm; on the coarse mesh it saved no time ("Line search of the
+//!   static stages" below), so the coarse scenes keep the plain start. It forgets its rate at
+//!   every step checkpoint (so that a restart repeats the steps), which makes it idle under
+//!   `--checkpoint step`. **Medium mesh**, whole runs on 2 ranks, one after the other alone on
+//!   the machine (`/usr/bin/time mpirun -n 2 cfrd run SCENE -o OUT -q`, `summary.json`): the
+//!   scenes of b50439c on its build against the scenes with the key on the build of 8e28a14
+//!   (which gives b50439c's results bit for bit, "Side by side: the assembly writes into
+//!   PETSc's storage"), and the GP-interface scene without the key on 8e28a14's build too:
+//!
+//!   | scene | build, predictor | wall time | assembly / linear solves | Newton iterations | residual evaluations | GMRES iterations | cut-backs |
+//!   |---|---|---|---|---|---|---|---|
+//!   | hyperbolic | b50439c, none | 392.3 s | 214.3 / 167.5 s | 1,155 | 2,263 | 13,770 | 0 |
+//!   | hyperbolic | 8e28a14, none | 356.1 s | 165.9 / 185.5 s | 1,155 | 2,263 | 13,770 | 0 |
+//!   | hyperbolic | 8e28a14, extrapolate | 291.0 s | 154.2 / 134.1 s | 910 | 1,984 | 9,753 | 1 |
+//!   | Mohr–Coulomb | b50439c, none | 384.3 s | 207.9 / 166.8 s | 1,150 | 2,251 | 13,811 | 0 |
+//!   | Mohr–Coulomb | 8e28a14, extrapolate | 283.0 s | 149.2 / 130.1 s | 910 | 1,997 | 9,671 | 1 |
+//!   | GP interface | b50439c, none | 470.7 s | 265.9 / 195.1 s | 1,222 | 2,561 | 15,170 | 2 |
+//!   | GP interface | 8e28a14, none | 414.2 s | 198.9 / 209.4 s | 1,222 | 2,561 | 15,170 | 2 |
+//!   | GP interface | 8e28a14, extrapolate | 341.0 s | 188.4 / 149.1 s | 984 | 2,281 | 10,611 | 9 |
+//!
+//!   Against b50439c the whole runs take 0.74 (hyperbolic), 0.74 (Mohr–Coulomb) and 0.72 (GP
+//!   interface) of the time: 4.9, 4.7 and 5.7 min. The new build alone, the same bits (`cfrd
+//!   compare --tolerance 0`: 0 for both pairs), 0.91 (hyperbolic) and 0.88 (GP interface); the
+//!   predictor alone, on the same build, 0.82 (hyperbolic) and 0.82 (GP interface): 20–21 %
+//!   fewer Newton and 29–30 % fewer GMRES iterations. The slab tables
+//!   (`fig08_slab_stress.csv`, both states, 30 rows each) move by 0.0014 / 0.0083 MPa (σ_s /
+//!   σ_a) and 0.0009 cm (hyperbolic), 0.0022 / 0.0101 MPa and 0.0014 cm (Mohr–Coulomb), and
+//!   0.038 / 0.0099 MPa and 0.0028 cm (GP interface: after the impoundment σ_s of the lower
+//!   slab is 0.01–0.038 MPa, up to 0.5 %, more compressive; its 9 cut-backs against 2 change
+//!   the load steps, and the GP interface follows its path). Against the canonical LU on the
+//!   same scenes (`--linear-solver canonical_lu -canonical_pc_factor_mat_solver_type mumps`,
+//!   8e28a14's build, the same protocol) the reduced multigrid's slab tables agree to 0.0006 /
+//!   0.0065 MPa and 0.0002 cm (hyperbolic; the LU 614.3 s, 903 Newton iterations, 0 cut-backs)
+//!   and 0.0047 / 0.0091 MPa and 0.0008 cm (GP interface; the LU 832.5 s, 984 Newton
+//!   iterations, 7 cut-backs): the GP scene's shift is the predictor's, not the solver's.
 //! * **Line search of the static stages** (`solver.line_search`; issue 20). The quake's
 //!   `full_step_first` ("The seed quake (coarse mesh)") against `secant` (then the default), and each
 //!   with the extrapolating predictor, on the three coarse seed scenes: build of 7e6f952, 2
@@ -925,6 +957,58 @@
 //! same bit for bit (`cfrd compare`: 0), as they are on any partition with the canonical LU.
 //! On 2 ranks the gain is small; on 8 ranks the busiest part evaluates fewer
 //! elements than before (7–40 %).
+//!
+//! ## Side by side: the assembly writes into PETSc's storage
+//!
+//! Issue 20. Three changes of commits 70899c8 and 8e28a14, none of which moves a bit of the
+//! results:
+//! * the element loop adds every K_e straight into the compressed rows of the tangent's
+//!   diagonal and off-diagonal blocks, through one offset per node pair of each element
+//!   (`solver::tangent_slots`), and f_int into the owned entries of its vector, where
+//!   `MatSetValues` searched each row's columns for every entry of every element and
+//!   `VecAssemblyBegin` met the other rank at every evaluation;
+//! * the hexahedron's stiffness, strain and force kernels sum over B's three nonzero entries
+//!   per column only, in the dense products' order (test
+//!   `sparse_kernels_have_the_bits_of_the_dense_products`; the stiffness of a Gauss point in
+//!   4.1 µs instead of 9.5 µs in a loop of 200,000 on one core);
+//! * the interface elements take the Jacobian at the last residual's iterate from their trial
+//!   states and stored tangents, as the solids did, and build K only when it is asked for.
+//!
+//! Same bits: `cfrd compare --tolerance 0` gives 0 for the medium hyperbolic scene's
+//! `fill_019`–`fill_020` restarted after slab stage I (2 ranks), the coarse GP-interface scene
+//! to stage 9 (1 rank) and the whole coarse GP-interface scene (2 ranks), each against the build
+//! of b50439c.
+//!
+//! * **Where the time went** (PETSc's `-log_view` through `PETSC_OPTIONS`, the medium
+//!   hyperbolic scene's `fill_019`–`fill_020` from the checkpoint after `slab_1`, 2 ranks, one
+//!   run of each build one after the other): the Jacobian evaluations (`SNESJacobianEval`, 60
+//!   of them, the trial states' K and its insertion) 4.00 s with b50439c's build, 1.74 s with
+//!   this one; `VecAssemblyBegin` 0.98 s and 0.04 s. The linear solves (`KSPSolve`, the same
+//!   767 GMRES iterations) took 7.33 s and 8.37 s: that run of the new build was slower in
+//!   every PETSc kernel by 12–17 % for the same operations (`MatMult` 2.28 / 2.56 s,
+//!   `MatSOR` 2.52 / 2.93 s), the machine's spread between two runs.
+//! * **The whole medium hyperbolic scene** (`/usr/bin/time mpirun -n 2 cfrd run
+//!   inputs/scenes/seed_medium_hyperbolic.yaml -o OUT -q`, the scene of b50439c, one run of
+//!   each build one after the other, alone on the machine; `summary.json`): b50439c 392.3 s
+//!   (assembly 214.3 s, linear solves 167.5 s), 8e28a14's code 356.1 s (assembly 165.9 s,
+//!   linear solves 185.5 s); the same 1,155 Newton iterations, 2,263 residual evaluations and
+//!   13,770 GMRES iterations. The assembly took 0.77 of its time; the whole run 0.91.
+//!
+//! Linear-solver settings tried on the same two restarts (`fill_019`–`fill_020` and
+//! `impound_1` of the medium hyperbolic scene, 2 ranks, one run each; none is the default):
+//! the structure factored by MUMPS instead of SuperLU_DIST the same time (and not the same
+//! bits from run to run, "Linear solvers on the seed dam"); on SuperLU_DIST's 2 × 1 process grid,
+//! or without its equilibration, the same within the ±10 % the same run spreads; by PETSc's LU
+//! on every rank (`pc_type redundant`) 18.7 s of linear solves in `impound_1` against 9.7 s;
+//! block Jacobi with a complete or incomplete LU per rank 865 and 1,017 GMRES iterations
+//! against 417; GAMG without squaring the graph (four levels instead of a 20,700-row fine level
+//! over a 387-row one) 406 iterations against 417, no faster; BoomerAMG on the fill 30.7 s
+//! against 9.7 s; all six rigid-body modes failed in `impound_1` as before; the
+//! preconditioner built at every Jacobian (`-reduced_refresh_after 0`) 225 iterations against
+//! 417 in the same time. One smoothing step per level instead of two
+//! (`-reduced_fieldsplit_fill_mg_levels_ksp_max_it 1`) saved 5–10 % of the linear solves in
+//! three pairs but cost two Newton iterations in `impound_1` and `fill_019`–`fill_020`, a gain
+//! too small to tell from the spread.
 //!
 //! ## Accuracy against cost
 //!
