@@ -133,8 +133,8 @@
 //! | resolution | `mesh.cfrd` | solver |
 //! |---|---|---|
 //! | coarse | 8 fill layers, 30 m panels, 3 impoundment stages | canonical LU (PETSc's LU) |
-//! | medium | 30 fill layers, 15 m panels, 4 impoundment stages | reduced multigrid (`reduced_amg`); its quake scenes canonical LU with MUMPS |
-//! | fine | 86 fill layers (as the seed), 2 elements per panel, 6 impoundment stages | reduced multigrid (`reduced_amg`); about 2 h on 2 ranks, run it [in parts](#runs-in-parts) |
+//! | medium | 30 fill layers, 15 m panels, 4 impoundment stages | reduced multigrid (`reduced_amg`), load steps started from the last step's rate (`predictor: extrapolate`); its quake scenes canonical LU with MUMPS and the plain start |
+//! | fine | 86 fill layers (as the seed), 2 elements per panel, 6 impoundment stages | reduced multigrid (`reduced_amg`), `predictor: extrapolate`; about 2 h on 2 ranks, run it [in parts](#runs-in-parts) |
 //!
 //! All of them use 8 load steps per stage, `newton_tol: 1.0e-5` (above the noise of the GP
 //! substepping, see [nonlinear runs](#nonlinear-runs)) and at most 15 Newton iterations per

@@ -148,21 +148,23 @@
 //!   | GP interface | 8e28a14, none | 414.2 s | 198.9 / 209.4 s | 1,222 | 2,561 | 15,170 | 2 |
 //!   | GP interface | 8e28a14, extrapolate | 341.0 s | 188.4 / 149.1 s | 984 | 2,281 | 10,611 | 9 |
 //!
-//!   Against b50439c the whole runs take 0.74 (hyperbolic), 0.74 (Mohr–Coulomb) and 0.72 (GP
-//!   interface) of the time: 4.9, 4.7 and 5.7 min. The new build alone, the same bits (`cfrd
-//!   compare --tolerance 0`: 0 for both pairs), 0.91 (hyperbolic) and 0.88 (GP interface); the
-//!   predictor alone, on the same build, 0.82 (hyperbolic) and 0.82 (GP interface): 20–21 %
-//!   fewer Newton and 29–30 % fewer GMRES iterations. The slab tables
-//!   (`fig08_slab_stress.csv`, both states, 30 rows each) move by 0.0014 / 0.0083 MPa (σ_s /
-//!   σ_a) and 0.0009 cm (hyperbolic), 0.0022 / 0.0101 MPa and 0.0014 cm (Mohr–Coulomb), and
-//!   0.038 / 0.0099 MPa and 0.0028 cm (GP interface: after the impoundment σ_s of the lower
-//!   slab is 0.01–0.038 MPa, up to 0.5 %, more compressive; its 9 cut-backs against 2 change
-//!   the load steps, and the GP interface follows its path). Against the canonical LU on the
-//!   same scenes (`--linear-solver canonical_lu -canonical_pc_factor_mat_solver_type mumps`,
-//!   8e28a14's build, the same protocol) the reduced multigrid's slab tables agree to 0.0006 /
-//!   0.0065 MPa and 0.0002 cm (hyperbolic; the LU 614.3 s, 903 Newton iterations, 0 cut-backs)
-//!   and 0.0047 / 0.0091 MPa and 0.0008 cm (GP interface; the LU 832.5 s, 984 Newton
-//!   iterations, 7 cut-backs): the GP scene's shift is the predictor's, not the solver's.
+//!   Against b50439c the whole runs take 0.74 (hyperbolic), 0.74 (Mohr–Coulomb) and 0.72
+//!   (GP interface) of the time: 4.9, 4.7 and 5.7 min. The new build alone, the same bits
+//!   (`cfrd compare --tolerance 0`: 0 for both pairs), 0.91 (hyperbolic) and 0.88 (GP
+//!   interface); the predictor alone, on the same build, 0.82 (hyperbolic) and 0.82 (GP
+//!   interface): 19–21 % fewer Newton and 29–30 % fewer GMRES iterations. The slab tables
+//!   (`fig08_slab_stress.csv`, both states, 30 rows each) move by 0.0014 / 0.0083 MPa (σ_s
+//!   / σ_a) and 0.0009 cm (hyperbolic), 0.0022 / 0.0101 MPa and 0.0014 cm (Mohr–Coulomb),
+//!   and 0.038 / 0.0099 MPa and 0.0028 cm (GP interface: after the impoundment σ_s of the
+//!   lower slab is 0.01–0.038 MPa, up to 0.5 %, more compressive; its 9 cut-backs against 2
+//!   change the load steps, and the GP interface follows its path). Against the canonical
+//!   LU on the same scenes (`--linear-solver canonical_lu
+//!   -canonical_pc_factor_mat_solver_type mumps`, 8e28a14's build, the same protocol) the
+//!   reduced multigrid's slab tables agree to 0.0006 / 0.0065 MPa and 0.0002 cm
+//!   (hyperbolic; the LU 614.3 s, 903 Newton iterations, 0 cut-backs, peak memory 597 MiB
+//!   per rank against the multigrid's 269 MiB) and 0.0047 / 0.0091 MPa and 0.0008 cm (GP
+//!   interface; the LU 832.5 s, 984 Newton iterations, 7 cut-backs, 817 MiB per rank
+//!   against 262 MiB): the GP scene's shift is the predictor's, not the solver's.
 //! * **Line search of the static stages** (`solver.line_search`; issue 20). The quake's
 //!   `full_step_first` ("The seed quake (coarse mesh)") against `secant` (then the default), and each
 //!   with the extrapolating predictor, on the three coarse seed scenes: build of 7e6f952, 2
