@@ -483,17 +483,9 @@ pub struct CsrPart {
 impl CsrPart {
     /// The rows of the sequential AIJ matrix `m`, its local columns mapped by `global`.
     fn of(m: p::Mat, global: impl Fn(i32) -> i32) -> Result<CsrPart, PetscError> {
-        let (mut n, mut ia, mut ja, mut done) = (0, null(), null(), p::PETSC_FALSE);
-        call!(MatGetRowIJ(
-            m,
-            0,
-            p::PETSC_FALSE,
-            p::PETSC_FALSE,
-            &mut n,
-            &mut ia,
-            &mut ja,
-            &mut done
-        ))?;
+        let mut ij: RowIjOut = (0, null(), null(), p::PETSC_FALSE);
+        row_ij(p::MatGetRowIJ, "MatGetRowIJ", m, &mut ij)?;
+        let (n, ia, ja, done) = ij;
         if done != p::PETSC_TRUE {
             return Err(PetscError {
                 code: 0,
@@ -515,19 +507,34 @@ impl CsrPart {
             };
             CsrPart { rows, cols }
         };
-        call!(MatRestoreRowIJ(
-            m,
-            0,
-            p::PETSC_FALSE,
-            p::PETSC_FALSE,
-            &mut n,
-            &mut ia,
-            &mut ja,
-            &mut done
-        ))?;
+        row_ij(p::MatRestoreRowIJ, "MatRestoreRowIJ", m, &mut ij)?;
         Ok(part)
     }
 }
+
+/// The outputs of [`RowIj`]: rows, row starts, column indices, whether they were given.
+type RowIjOut = (i32, *const i32, *const i32, p::PetscBool);
+
+/// Calls `f` (`MatGetRowIJ` or `MatRestoreRowIJ`) on the sequential AIJ matrix `m` for its
+/// compressed rows, unshifted and as stored.
+fn row_ij(f: RowIj, name: &'static str, m: p::Mat, out: &mut RowIjOut) -> Result<(), PetscError> {
+    let (n, ia, ja, done) = out;
+    let no = p::PETSC_FALSE;
+    // SAFETY: `m` is a valid sequential AIJ matrix and PETSc writes only the four outputs.
+    chk(unsafe { f(m, 0, no, no, n, ia, ja, done) }, name)
+}
+
+/// `MatGetRowIJ` and `MatRestoreRowIJ`, which take the same arguments.
+type RowIj = unsafe extern "C" fn(
+    p::Mat,
+    i32,
+    p::PetscBool,
+    p::PetscBool,
+    *mut i32,
+    *mut *const i32,
+    *mut *const i32,
+    *mut p::PetscBool,
+) -> p::PetscErrorCode;
 
 /// The values of a sequential AIJ matrix, borrowed from PETSc until [`SeqValues::restore`].
 struct SeqValues {
