@@ -15,15 +15,7 @@
 #   minutes on 2 cores with their reduced multigrid), overlays their slab profiles as
 #   seed_medium_slab.png, copies
 #   their figures as seed_medium_<model>_fig*.png and adds their rows to seed_static_runs.csv.
-#   FINE=DIR takes the fine hyperbolic run made with scripts/run_in_parts.sh (it takes hours on
-#   2 cores, so it is not started here): draws the figures of all its parts that kept their
-#   results together (`cfrd profiles`, into DIR/profiles; each part's own figures hold only
-#   the stages it ran; parts killed by an older cfrd kept none),
-#   copies them as seed_fine_hyperbolic_fig*.png, overlays the hyperbolic slab profiles of the three meshes as
-#   seed_hyperbolic_meshes.png and adds a row fine_hyperbolic with the wall time summed over
-#   DIR/parts.csv and the largest per-rank memory of the parts. A part that was paused (kill
-#   -STOP, to keep other work off its clock) gets its net seconds written into parts.csv by
-#   hand; an empty peak_rss_kib (a killed part without /usr/bin/time's report) is skipped.
+#   The fine scenes run for an hour or more each: scripts/make_seed_fine_figures.sh draws them.
 # The scenes use the canonical LU (solver.linear_solver: canonical_lu), so the 1- and 2-rank
 # results are expected to be identical.
 set -euo pipefail
@@ -69,50 +61,15 @@ if [ ${#medium[@]} -eq 3 ]; then
     "$bin" overlay hyperbolic="$runs/medium_hyperbolic_2" mohr_coulomb="$runs/medium_mohr_coulomb_2" \
         gp_interface="$runs/medium_gp_interface_2" -o "$figures/seed_medium_slab.png"
 fi
-fine=""
-if [ -n "${FINE:-}" ]; then
-    # the parts are the directories part_<k> (run_in_parts.sh keeps each part's log beside it)
-    fine="$(ls -d "$FINE"/part_*/ | sort -V | tail -n 1)"
-    fine="${fine%/}"
-    [ -f "$fine/summary.json" ] || { echo "$fine has not finished (no summary.json)" >&2; exit 1; }
-    # a part killed by a cfrd that published its results only at the end has no results.h5
-    # (only its checkpoint): its stages are missing from the probe history
-    parts=()
-    for p in $(ls -d "$FINE"/part_*/ | sort -V); do
-        p="${p%/}"
-        if [ -f "$p/results.h5" ]; then parts+=("$p"); else echo "$p: no results.h5 (killed), its stages are not drawn"; fi
-    done
-    "$bin" profiles inputs/scenes/seed_fine_hyperbolic.yaml "${parts[@]}" -o "$FINE/profiles"
-    for f in "$FINE"/profiles/fig*.png; do
-        cp "$f" "$figures/seed_fine_hyperbolic_$(basename "$f")"
-    done
-    "$bin" overlay coarse="$runs/hyperbolic_2" medium="$runs/medium_hyperbolic_2" fine="$FINE/profiles" \
-        -o "$figures/seed_hyperbolic_meshes.png"
-fi
 {
     echo "model,ranks,wall_s,peak_rss_mib,newton_iterations,steps,cutbacks,interface_points,open,slipping,max_newton_per_step,factorizations"
-    row() { # run-directory label ranks [parts.csv]
-        python3 - "$1/summary.json" "$2" "$3" "${4:-}" <<'PY'
-import csv, json, sys
-s = json.load(open(sys.argv[1]))
-wall = s["total_seconds"]
-rss = max(s["peak_memory_bytes_per_rank"]) / 2**20
-if sys.argv[4]:  # a run in parts: the parts' wall times add up, the memory is the largest part's
-    parts = list(csv.DictReader(open(sys.argv[4])))
-    wall = sum(float(p["wall_seconds"]) for p in parts)
-    rss = max([rss] + [float(p["peak_rss_kib"]) / 1024 for p in parts if p["peak_rss_kib"]])
-print(f'{sys.argv[2]},{sys.argv[3]},{wall:.0f},{rss:.0f},{s["newton_iterations"]},{s["steps"]},'
-      f'{s["cutbacks"]},{s["interface_points"]},{s["interface_open"]},{s["interface_slipping"]},'
-      f'{max(s["newton_per_step"])},{s.get("factorizations", 0)}')
-PY
-    }
+    row() { python3 scripts/summary_row.py "$1/summary.json" "$2" "$3" "${4:-}"; }
     for m in "${models[@]}"; do
         for n in 2 1; do row "$runs/${m}_$n" "$m" "$n"; done
     done
     for m in "${medium[@]}"; do
         row "$runs/medium_${m}_2" "medium_$m" 2
     done
-    [ -z "$fine" ] || row "$fine" fine_hyperbolic 2 "$FINE/parts.csv"
 } > "$figures/seed_static_runs.csv"
 {
     for m in "${models[@]}"; do
