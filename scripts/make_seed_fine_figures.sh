@@ -5,7 +5,7 @@
 #   scripts/run_in_parts.sh inputs/scenes/seed_fine_<model>.yaml FINE_DIR/<model> 2
 # for model in hyperbolic, mohr_coulomb, gp_interface. Kept in scripts/figures/:
 #   seed_fine_<model>_fig*.png  each run's Figs. 7-11, drawn over all its parts (`cfrd profiles`)
-#   seed_fine_slab.png          slab stresses and deflection of the three models (seed Figs. 8, 9)
+#   seed_fine_slab.png          slab stresses and deflection of the models that finished (seed Figs. 8, 9)
 #   seed_hyperbolic_meshes.png  the hyperbolic slab of the coarse, medium and fine meshes, when
 #                               STATIC_RUNS names the run directory of
 #                               `MEDIUM=1 scripts/make_seed_static_figures.sh STATIC_RUNS`
@@ -45,9 +45,10 @@ models=()
 for m in hyperbolic mohr_coulomb gp_interface; do
     if [ -d "$fine_dir/$m" ] && draw "$m"; then models+=("$m"); fi
 done
-if [ ${#models[@]} -eq 3 ]; then
-    "$bin" overlay hyperbolic="$fine_dir/hyperbolic/profiles" mohr_coulomb="$fine_dir/mohr_coulomb/profiles" \
-        gp_interface="$fine_dir/gp_interface/profiles" -o "$figures/seed_fine_slab.png"
+if [ ${#models[@]} -ge 2 ]; then
+    overlay=()
+    for m in "${models[@]}"; do overlay+=("$m=$fine_dir/$m/profiles"); done
+    "$bin" overlay "${overlay[@]}" -o "$figures/seed_fine_slab.png"
 fi
 if [ -n "${STATIC_RUNS:-}" ] && [ -d "$fine_dir/hyperbolic/profiles" ]; then
     "$bin" overlay coarse="$STATIC_RUNS/hyperbolic_2" medium="$STATIC_RUNS/medium_hyperbolic_2" \

@@ -72,6 +72,49 @@
 //!
 //! ## The fine run
 //!
+//! **The ideal elasto-plastic and GP interfaces on the reduced multigrid** (issue 20,
+//! acceptance 5; build of commit 215176c, whose code is that of a3e8d15 but for a refactoring
+//! that gives the same bits): the scenes as they are (`linear_solver: reduced_amg`,
+//! `predictor: extrapolate`, 8 load steps per stage), `BIN=… scripts/run_in_parts.sh
+//! inputs/scenes/seed_fine_<model>.yaml DIR/<model> 2`, alone on the machine. The Mohr–Coulomb
+//! run went in one part; the GP-interface run in two, the first killed with the working session
+//! in `fill_047` and the second restarted from its checkpoint after `fill_046` (the first part's
+//! wall time counted to that checkpoint, 1,336 s). Rows of `scripts/figures/seed_fine_runs.csv`
+//! (`scripts/make_seed_fine_figures.sh DIR`), figures `seed_fine_<model>_fig*.png` and
+//! `seed_fine_slab.png`; slab tables in [`crate::verification`].
+//!
+//! | interface | wall time | peak memory per rank | Newton iterations | steps | cut-backs | GMRES iterations | preconditioner builds | Newton per step (median / mean / max) | open / slipping interface points (of 25,304) |
+//! |---|---|---|---|---|---|---|---|---|---|
+//! | Mohr–Coulomb | 70.3 min | 1.98 / 1.42 GiB | 2,109 | 764 | 3 | 19,025 | 189 | 2 / 2.76 / 13 | 890 / 2 |
+//! | GP interface | 76.8 min | 1.56 / 1.42 GiB | 2,205 | 770 | 9 | 20,101 | 199 | 3 / 2.86 / 15 | 884 / 16,512 |
+//!
+//! By stage band (`stage_seconds` of `summary.json`, carried across the restart; cut-backs
+//! from the progress lines), Mohr–Coulomb / GP interface:
+//!
+//! | stages | wall time | Newton per step | GMRES per Newton iteration | cut-backs |
+//! |---|---|---|---|---|
+//! | fill_001–fill_020 | 5.6 / 5.3 min | 3.56 / 3.56 | 5.5 / 5.5 | 0 / 0 |
+//! | fill_021–fill_050 | 19.0 / 18.1 min | 3.41 / 3.41 | 7.5 / 7.5 | 3 / 3 |
+//! | slab_1 | 40 / 64 s | 1.38 / 2.44 | 21.6 / 15.5 | 0 / 1 |
+//! | fill_051–fill_086 | 28.1 / 28.1 min (38–57 s per stage) | 1.93 / 1.92 | 12.0 / 11.8 | 0 / 0 |
+//! | slab_2 (the hard case) | 88 / 143 s | 1.50 / 3.00 | 26.9 / 16.3 | 0 / 1 |
+//! | slab_3 | 60 / 106 s | 1.25 / 2.56 | 21.5 / 12.4 | 0 / 1 |
+//! | impound_1–impound_6 | 11.0 / 17.2 min | 2.50 / 3.51 | 18.3 / 17.6 | 0 / 3 |
+//!
+//! The fill is the same work for both (the interface is not yet in place below slab stage I,
+//! and above it the fill stages cost the same); the GP interface costs more in the slab stages
+//! and the impoundment, where its points slip (16,512 of 25,304 after impoundment against 2)
+//! and its load steps cut back (3 in `impound_3`, 316 s against 102–161 s for the other
+//! impoundment stages). Slab stage II, the hard case of the canonical LU's run below, passed
+//! with no cut-back (Mohr–Coulomb) and one (GP). Where the time went (`phase_seconds`; the
+//! GP run's second part only): Mohr–Coulomb 1,508 s assembly, 2,459 s linear solves, 216 s
+//! output; GP part 2 1,127 s, 2,018 s and 104 s. For context only (another build, the
+//! trilinear slab, the hyperbolic interface, not side by side): the whole fine run on the
+//! reduced multigrid below took 128.8 min with 1.61 GiB per rank, its fill_001–fill_020 9.4
+//! min and fill_051–fill_086 59.1 min. The fine hyperbolic scene with this build was started
+//! after these two and had not finished when this was written.
+//!
+//! **The first fine run** (canonical LU).
 //! Fine mesh (76,502 elements, 256,461 DOFs, 86 fill layers, 95 stages; MUMPS on OpenBLAS),
 //! hyperbolic interface, 2 ranks. Source: commit 6549cb1: `scripts/run_in_parts.sh
 //! inputs/scenes/seed_fine_hyperbolic.yaml DIR 2`, seven parts, each restarted from the last

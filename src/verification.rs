@@ -12,6 +12,7 @@
 //! [coarse mesh](#coarse-mesh-the-three-interface-models) ·
 //! [medium mesh](#medium-mesh-the-three-interface-models) ·
 //! [fine mesh](#fine-mesh-against-medium-hyperbolic-interface) ·
+//! [fine mesh, two interface models](#fine-mesh-the-ideal-elasto-plastic-and-gp-interfaces) ·
 //! [known defects](#known-defects)
 //!
 //! ## Solver checks
@@ -181,7 +182,8 @@
 //! displacement, slab stresses, slab deflection, the σn–τ path of interface element I-A at
 //! el. 2711 m, interface jumps and opening), kept as
 //! `scripts/figures/seed_{static,medium}_<model>_fig*.png` (coarse, medium) and
-//! `scripts/figures/seed_fine_hyperbolic_fig*.png`. Below: the slab at the central section,
+//! `scripts/figures/seed_fine_<model>_fig*.png` (fine: hyperbolic with the trilinear slab,
+//! ideal elasto-plastic and GP with the current one). Below: the slab at the central section,
 //! stresses in MPa (tension +) along the slope σ_s and the axis σ_a, deflection in cm (towards
 //! the dam +) ([`crate::profiles`] defines each quantity).
 //!
@@ -343,11 +345,53 @@
 //! and the deflection (millimetres) differ at the joint between slab stages I and II
 //! (2736–2740 m), where a coarser slab smears the jump.
 //!
-//! Limits of this comparison: the interface-model comparison was not repeated on the fine mesh;
-//! and the fine run's figures hold only stages 88–95 (slab stages II and III and the
+//! Limits of this comparison: the fine run's figures hold only stages 88–95 (slab stages II and III and the
 //! impoundment), so the history of element I-A (seed Fig. 10) starts at stage 88: its first
 //! parts ran with a cfrd that wrote results only at the end of a run, so those stages exist
 //! only in their checkpoints (a run now publishes its results at every stage checkpoint).
+//!
+//! ### Fine mesh: the ideal elasto-plastic and GP interfaces
+//!
+//! Source: the fine Mohr–Coulomb and GP-interface runs of [`crate::performance`] ("The fine
+//! run"; build of commit 215176c, the reduced multigrid, incompatible-modes slab, the bounded
+//! GP reading), `scripts/make_seed_fine_figures.sh DIR`: `seed_fine_slab.png`,
+//! `seed_fine_<model>_fig*.png`. Values interpolated linearly between each profile's points.
+//! The fine hyperbolic run with the same build had not finished when this was written, so its
+//! column is missing; the hyperbolic fine values above come from the trilinear slab.
+//!
+//! ![slab stresses and deflection by interface model, fine mesh][fine]
+//!
+//! | elevation | state | σ_s MC / GP | σ_a MC / GP | deflection MC / GP |
+//! |---|---|---|---|---|
+//! | 2697 m | end of construction | −2.91 / −2.91 | −1.00 / −1.02 | −0.2 / −0.2 |
+//! | 2722 m | end of construction | −2.12 / −2.19 | −1.21 / −1.25 | −0.2 / −0.2 |
+//! | 2703 m | after impoundment | −7.59 / −7.83 | −5.24 / −5.31 | 11.4 / 11.4 |
+//! | 2722 m | after impoundment | −7.88 / −8.09 | −6.06 / −6.19 | 13.7 / 13.8 |
+//! | 2761 m | after impoundment | −4.13 / −3.94 | −5.41 / −5.60 | 11.4 / 11.5 |
+//! | 2814 m | after impoundment | −1.40 / −1.39 | −2.93 / −2.94 | 5.2 / 5.3 |
+//!
+//! * **The two models agree closely on the fine mesh.** Largest difference over the section
+//!   (as a fraction of the larger of the two runs' largest values): at the end of construction
+//!   0.09 MPa in σ_s (2.9 %, 2732 m) and 0.07 MPa in σ_a (4.7 %, 2804 m); after impoundment
+//!   0.38 MPa in σ_s (4.5 %, at the slab's foot, 2682 m), 0.20 MPa in σ_a (3.2 %, 2754 m) and
+//!   0.24 cm in deflection (1.7 %). The largest slope compression after impoundment is −8.39
+//!   (GP) against −8.09 MPa, the largest deflection 14.2 against 14.1 cm.
+//! * **Against the medium mesh** (the medium table above, with its own source): the fine
+//!   values lie within 0.34 MPa in σ_s, 0.36 MPa in σ_a and 0.6 cm of the medium ones in these
+//!   rows, with the same pattern: the two plastic interfaces compress the slab's foot equally
+//!   at the end of construction (−2.91 both), and after impoundment the GP interface gives the
+//!   larger slope compression low on the slab and the smaller one above about 2740 m.
+//! * **The seed's axial finding** ("below 2760 m the GP interface gives smaller axial stress,
+//!   above it larger"): on the fine mesh the GP interface's axial compression is larger than
+//!   the ideal elasto-plastic one's over the whole section after impoundment (−5.31 against
+//!   −5.24 MPa at 2703 m, −5.60 against −5.41 at 2761 m), by at most 0.20 MPa: not reproduced
+//!   against this model. The comparison with the hyperbolic interface awaits its run.
+//! * **The GP interface itself** (`fig11_interface.csv` after impoundment): a closure of
+//!   7.3–7.4 mm over most of the face (median 7.32 mm, the Bandis limit 8.0 mm), 4.1–4.4 mm
+//!   just above the feet of slab stages II and III (2738 m, 2806 m) and 6.0–7.0 mm above the
+//!   water line, no opening; the shear jump along the slope is largest at the joint between
+//!   slab stages I and II, −44.9 mm at 2736 m (medium: −43 mm at 2734 m). The closure carried by the bound
+//!   ("Known defects") is a property of the model, not of the mesh.
 //!
 //! ## Known defects
 //!
@@ -788,3 +832,4 @@
 #![cfg_attr(doc, doc = embed_doc_image::embed_image!("coarse", "scripts/figures/seed_static_slab.png"))]
 #![cfg_attr(doc, doc = embed_doc_image::embed_image!("medium", "scripts/figures/seed_medium_slab.png"))]
 #![cfg_attr(doc, doc = embed_doc_image::embed_image!("meshes", "scripts/figures/seed_hyperbolic_meshes.png"))]
+#![cfg_attr(doc, doc = embed_doc_image::embed_image!("fine", "scripts/figures/seed_fine_slab.png"))]
