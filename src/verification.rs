@@ -322,7 +322,8 @@
 //!
 //! Source (the trilinear slab): the fine run of commit 6549cb1 (`scripts/run_in_parts.sh` on
 //! `inputs/scenes/seed_fine_hyperbolic.yaml`, 2 ranks, seven parts, then
-//! `FINE=DIR scripts/make_seed_static_figures.sh`: `seed_hyperbolic_meshes.png`,
+//! `FINE=DIR scripts/make_seed_static_figures.sh` of that commit, whose fine part is now
+//! `STATIC_RUNS=… scripts/make_seed_fine_figures.sh`: `seed_hyperbolic_meshes.png`,
 //! `seed_fine_hyperbolic_fig*.png`). Values interpolated linearly between each profile's points,
 //! so a medium value may differ from the medium table by a few hundredths.
 //!
