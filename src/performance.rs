@@ -76,7 +76,7 @@
 //! acceptance 5; build of commit 215176c, whose code is that of a3e8d15 but for a refactoring
 //! that gives the same bits): the scenes as they are (`linear_solver: reduced_amg`,
 //! `predictor: extrapolate`, 8 load steps per stage), `BIN=… scripts/run_in_parts.sh
-//! inputs/scenes/seed_fine_<model>.yaml DIR/<model> 2`, alone on the machine. The Mohr–Coulomb
+//! inputs/scenes/seed_fine_<model>.yaml DIR/<model> 2`, alone on the machine but for seconds of light work (drawing figures, a niced `perf report`). The Mohr–Coulomb
 //! run went in one part; the GP-interface run in two, the first killed with the working session
 //! in `fill_047` and the second restarted from its checkpoint after `fill_046` (the first part's
 //! wall time counted to that checkpoint, 1,336 s). Rows of `scripts/figures/seed_fine_runs.csv`
