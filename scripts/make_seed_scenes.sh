@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Writes the seed-dam scenes inputs/scenes/seed_{coarse,medium,fine}_{hyperbolic,mohr_coulomb,gp_interface}.yaml
-# (issue 4). The nine files share one body; they differ only in the mesh resolution and the
+# (issue 4) and inputs/scenes/seed_xfine_hyperbolic.yaml (the weak-scaling study's ~1M-DOF dam,
+# issue 20). The files share one body; they differ only in the mesh resolution and the
 # slab-cushion interface model. Edit this script, not the generated files, then rerun it:
 #   bash scripts/make_seed_scenes.sh
 set -euo pipefail
@@ -11,6 +12,7 @@ declare -A mesh=(
   [coarse]="{ fill_layers: 8, elements_per_panel: 1, rockfill_elements: 3, panel_width: 30.0, impoundment_stages: 3 }"
   [medium]="{ fill_layers: 30, elements_per_panel: 1, rockfill_elements: 8, impoundment_stages: 4 }"
   [fine]="{ fill_layers: 86, elements_per_panel: 2, rockfill_elements: 14, impoundment_stages: 6 }"
+  [xfine]="{ fill_layers: 110, elements_per_panel: 4, rockfill_elements: 26, impoundment_stages: 6 }"
 )
 # the stiff interfaces and joints (k2 1e10 Pa/m, 2.5e10 Pa/m) stall the default GAMG preconditioner
 # once the slab is placed; a direct solver is used where it is affordable. The coarse and medium
@@ -70,19 +72,28 @@ declare -A solver=(
   [coarse]="solver: { newton_tol: 1.0e-5, newton_max_iterations: 15, load_steps: 8, linear_solver: canonical_lu }"
   [medium]="solver: { newton_tol: 1.0e-5, newton_max_iterations: 15, load_steps: 8, linear_solver: reduced_amg, predictor: extrapolate }"
   [fine]="solver: { newton_tol: 1.0e-5, newton_max_iterations: 15, load_steps: 8, linear_solver: reduced_amg, predictor: extrapolate }"
+  [xfine]="solver: { newton_tol: 1.0e-5, newton_max_iterations: 15, load_steps: 8, linear_solver: reduced_amg, predictor: extrapolate }"
 )
 declare -A note=(
   [coarse]="coarse mesh (panels 30 m, wider than the seed's 12-18 m)"
   [medium]="medium mesh (panels 15 m)"
   [fine]="fine mesh (86 fill layers as in the seed, about the paper's 74 521 elements)"
+  [xfine]="extra-fine mesh (110 fill layers, 1 018 689 DOFs; the weak-scaling study's ~1M-DOF dam)"
+)
+# the resolutions' interface models: the extra-fine dam serves the weak-scaling study only
+declare -A models=(
+  [coarse]="hyperbolic mohr_coulomb gp_interface"
+  [medium]="hyperbolic mohr_coulomb gp_interface"
+  [fine]="hyperbolic mohr_coulomb gp_interface"
+  [xfine]="hyperbolic"
 )
 declare -A law=(
   [hyperbolic]="Clough-Duncan hyperbolic interface, seed Table 3 (k1 600, k2 1e7 kPa/m, n 0.85, phi 41.5, Rf 0.9)"
   [mohr_coulomb]="ideal elasto-plastic (Mohr-Coulomb) interface, seed Table 4 (k1 300, k2 1e7 kPa/m, n 0.8, phi 41.5)"
   [gp_interface]="generalized-plasticity interface, seed Table 2"
 )
-for res in coarse medium fine; do
-  for model in hyperbolic mohr_coulomb gp_interface; do
+for res in coarse medium fine xfine; do
+  for model in ${models[$res]}; do
     f=inputs/scenes/seed_${res}_${model}.yaml
     cat > "$f" <<YAML
 # Seed dam (Liu, Kong & Zou 2015, seed/summary.md section 2): construction in fill layers, face
@@ -154,5 +165,5 @@ earthquake: { record: ../accel/seed_quake.csv, damping: { ratio: 0.02, frequenci
 YAML
   done
 done
-echo "wrote inputs/scenes/seed_{coarse,medium,fine}_{hyperbolic,mohr_coulomb,gp_interface}.yaml"
+echo "wrote inputs/scenes/seed_{coarse,medium,fine}_{hyperbolic,mohr_coulomb,gp_interface}.yaml, seed_xfine_hyperbolic.yaml"
 echo "wrote inputs/scenes/seed_{coarse,medium}_{gp_interface,mohr_coulomb}_quake.yaml"
