@@ -962,6 +962,12 @@ pub trait SnesProblem {
     /// The dot product aᵀb of two vectors laid out like x, independent of the rank count
     /// (the residual secant line search's decisions rest on it).
     fn dot(&mut self, a: &Vector, b: &Vector) -> Result<f64, PetscError>;
+    /// Whether the last residual evaluated already meets the convergence test (the same on
+    /// every rank): [`LineSearch::ResidualSecant`] then keeps the full step rather than
+    /// extending it, and Newton ends there. The default: never.
+    fn last_residual_converged(&self) -> bool {
+        false
+    }
 }
 
 /// How a SNES solve ended.
@@ -1014,7 +1020,8 @@ pub enum LineSearch {
     FullStepFirst,
     /// The full step, or a longer one, from the secant through F(x) and F(x − δ)
     /// (`residual_secant_step`) when the full step lowers ‖F‖²: one or two residual
-    /// evaluations; otherwise `Secant`'s step (three).
+    /// evaluations; otherwise `Secant`'s step (three). A full step whose residual already
+    /// meets the convergence test ([`SnesProblem::last_residual_converged`]) is kept as it is.
     ResidualSecant,
 }
 
@@ -1306,7 +1313,7 @@ unsafe fn full_step_shell<P: SnesProblem>(
 /// ([`LineSearch::FullStepFirst`]): λ = 1 when the full step lowers ‖F‖², else
 /// [`fallback_step`]'s with the parabola's vertex kept in [0.1, 1]. With `secant`
 /// ([`LineSearch::ResidualSecant`]): [`secant_choice`]'s λ, else the vertex as PETSc's `l2`
-/// takes it.
+/// takes it; the full step where its residual meets Newton's tolerance ([`after_full_step`]).
 fn shell_line_search_apply<P: SnesProblem>(
     ls: p::SNESLineSearch,
     problem: &mut P,
@@ -1317,22 +1324,19 @@ fn shell_line_search_apply<P: SnesProblem>(
     let (x, mut f, y, mut w, mut g) = (borrowed(x), borrowed(f), borrowed(y), borrowed(w), borrowed(g));
     let f0 = problem.objective(&x)?.unwrap_or(f64::INFINITY);
     let g1 = merit(problem, &x, &y, &mut w, 1.0)?;
-    let chosen = if secant && g1 < f0 {
-        secant_choice(problem, [&x, &y, &f], &mut w, &mut g, g1)?
+    let rule = if secant {
+        L2_FALLBACK
     } else {
-        None
+        FULL_STEP_FIRST_FALLBACK
+    };
+    let chosen = match after_full_step(secant, f0, g1, problem.last_residual_converged()) {
+        AfterFullStep::Keep => Some(1.0),
+        AfterFullStep::Secant => secant_choice(problem, [&x, &y, &f], &mut w, &mut g, g1)?,
+        AfterFullStep::Fallback => None,
     };
     let lambda = match chosen {
         Some(l) => Some(l),
-        None if g1 < f0 && !secant => Some(1.0),
-        None => {
-            let rule = if secant {
-                L2_FALLBACK
-            } else {
-                FULL_STEP_FIRST_FALLBACK
-            };
-            fallback_step(f0, g1, rule, &mut |l| merit(problem, &x, &y, &mut w, l))?
-        }
+        None => fallback_step(f0, g1, rule, &mut |l| merit(problem, &x, &y, &mut w, l))?,
     };
     let Some(lambda) = lambda else {
         return call!(SNESLineSearchSetReason(ls, p::SNES_LINESEARCH_FAILED_DOMAIN));
@@ -1349,6 +1353,33 @@ fn shell_line_search_apply<P: SnesProblem>(
     call!(VecNorm(y.raw, p::NORM_2, &mut ynorm))?;
     call!(SNESLineSearchSetNorms(ls, xnorm, fnorm, ynorm))?;
     call!(SNESLineSearchSetReason(ls, p::SNES_LINESEARCH_SUCCEEDED))
+}
+
+/// What a shell line search does once it knows φ(1) = `g1` (φ(0) = `f0`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum AfterFullStep {
+    /// Take the full step.
+    Keep,
+    /// Try [`secant_choice`]'s longer step.
+    Secant,
+    /// The full step does not lower φ: [`fallback_step`].
+    Fallback,
+}
+
+/// The full step when it lowers φ and either the line search is
+/// [`LineSearch::FullStepFirst`] (`secant` false) or its residual already meets Newton's
+/// convergence test (`converged`: an extension would only spend an evaluation); the residual
+/// secant's step when it lowers φ otherwise; the fallback when it does not lower φ.
+fn after_full_step(secant: bool, f0: f64, g1: f64, converged: bool) -> AfterFullStep {
+    if g1 < f0 {
+        if secant && !converged {
+            AfterFullStep::Secant
+        } else {
+            AfterFullStep::Keep
+        }
+    } else {
+        AfterFullStep::Fallback
+    }
 }
 
 /// The merit φ(λ) = ‖F(x − λy)‖² (∞ where F cannot be evaluated), with x − λy left in `w`.
@@ -2027,6 +2058,24 @@ mod line_search_tests {
         // no descent along the correction, or no change of F: no secant step
         assert_eq!(residual_secant_step(-1.0, 1.0), None);
         assert_eq!(residual_secant_step(0.0, 0.0), None);
+    }
+
+    #[test]
+    fn a_full_step_that_meets_the_tolerance_is_not_extended() {
+        use super::{after_full_step, AfterFullStep};
+        // the residual secant extends a full step that lowered φ, unless Newton ends there
+        assert_eq!(after_full_step(true, 1.0, 0.5, false), AfterFullStep::Secant);
+        assert_eq!(after_full_step(true, 1.0, 0.5, true), AfterFullStep::Keep);
+        // full_step_first keeps every full step that lowered φ
+        assert_eq!(after_full_step(false, 1.0, 0.5, false), AfterFullStep::Keep);
+        // a full step that does not lower φ (or where F failed) falls back, converged or not
+        for secant in [true, false] {
+            assert_eq!(after_full_step(secant, 1.0, 1.0, true), AfterFullStep::Fallback);
+            assert_eq!(
+                after_full_step(secant, 1.0, f64::INFINITY, false),
+                AfterFullStep::Fallback
+            );
+        }
     }
 
     #[test]

@@ -266,6 +266,11 @@ impl SnesProblem for NewtonStep<'_, '_> {
         a.read(|sa| b.read(|sb| exact_sum(comm, sa.iter().zip(sb).map(|(x, y)| x * y))))?
     }
 
+    fn last_residual_converged(&self) -> bool {
+        self.residual_at.is_some()
+            && self.residual_norm / self.ref_norm <= self.model.scene.file.solver.newton_tol
+    }
+
     fn converged(&mut self, it: u32, _fnorm: f64, linear_iterations: u32) -> Option<bool> {
         // the exact norm of the last residual (at the iterate SNES accepted), not VecNorm's
         let rel = self.residual_norm / self.ref_norm;
