@@ -136,9 +136,13 @@
 //! | medium | 30 fill layers, 15 m panels, 4 impoundment stages | reduced multigrid (`reduced_amg`), load steps started from the last step's rate (`predictor: extrapolate`); its quake scenes canonical LU with MUMPS and the plain start |
 //! | fine | 86 fill layers (as the seed), 2 elements per panel, 6 impoundment stages | reduced multigrid (`reduced_amg`), `predictor: extrapolate`; about 2 h on 2 ranks, run it [in parts](#runs-in-parts) |
 //!
-//! All of them use 8 load steps per stage, `newton_tol: 1.0e-5` (above the noise of the GP
-//! substepping, see [nonlinear runs](#nonlinear-runs)) and at most 15 Newton iterations per
-//! step, and write the seed's Figs. 7–11 (`output.profiles`, probe I-A at el. 2711 m). Their
+//! All of them use 8 load steps per stage and at most 15 Newton iterations per step; the
+//! coarse scenes and the quake scenes stop Newton at `newton_tol: 1.0e-5` (above the noise of
+//! the GP substepping, see [nonlinear runs](#nonlinear-runs)), the medium and fine ones at
+//! `1.0e-4`, which on the medium mesh leaves the results as close to a 32-load-step reference
+//! as 1e-5 does in 0.62 of the time ([`crate::performance`], "The medium mesh's Newton
+//! tolerance"). `seed_xfine_hyperbolic.yaml` (110 fill layers, 1,018,689 DOFs) is the
+//! weak-scaling study's dam. All write the seed's Figs. 7–11 (`output.profiles`, probe I-A at el. 2711 m). Their
 //! sizes and run times are in [`crate::performance`].
 //!
 //! ## Nonlinear runs
@@ -161,7 +165,7 @@
 //!   integration, about the substepping tolerance STOL (`integration.stol`, spec models §8.2,
 //!   default 1e-4) relative to the reference force: when a point's number of substeps changes
 //!   between two Newton iterates its stress jumps by up to that much. Give `newton_tol` above it
-//!   (the seed scenes use 1e-5). When a residual stays put a little above STOL while
+//!   (the seed scenes use 1e-5 or 1e-4). When a residual stays put a little above STOL while
 //!   `newton_tol` is smaller, `solver: { integration_tol_ratio: 0.1 }` (or
 //!   `cfrd run --integration-tol-ratio 0.1`, which leaves the hash alone, so a stalled run
 //!   continues from its checkpoint) integrates every GP material at STOL ≤ 0.1·newton_tol. It
