@@ -140,10 +140,10 @@
 //! coarse scenes and the quake scenes stop Newton at `newton_tol: 1.0e-5` (above the noise of
 //! the GP substepping, see [nonlinear runs](#nonlinear-runs)), the medium and fine ones at
 //! `1.0e-4`, which on the medium mesh leaves the results as close to a 32-load-step reference
-//! as 1e-5 does in 0.62 of the time ([`crate::performance`], "The medium mesh's Newton
-//! tolerance"). `seed_xfine_hyperbolic.yaml` (110 fill layers, 1,018,689 DOFs) is the
-//! weak-scaling study's dam. All write the seed's Figs. 7–11 (`output.profiles`, probe I-A at el. 2711 m). Their
-//! sizes and run times are in [`crate::performance`].
+//! as 1e-5 does in 0.61 of the time ([`crate::performance`], "The medium mesh's Newton
+//! tolerance"). `seed_xfine_hyperbolic.yaml` (110 fill layers, 1,018,689 DOFs, Newton to 1e-4)
+//! is the weak-scaling study's dam. All write the seed's Figs. 7–11 (`output.profiles`, probe
+//! I-A at el. 2711 m). Their sizes and run times are in [`crate::performance`].
 //!
 //! ## Nonlinear runs
 //!

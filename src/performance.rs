@@ -884,7 +884,11 @@
 //!   otherwise; `cfrd partition -n 2`: 319,646 elements, 339,563 nodes, 1,018,689 DOFs,
 //!   partitioned in 3.7 s) but not run: its checkpoints before the fill stage after slab stage
 //!   I and before the impoundment need its construction run first, on 4.2 times the fine
-//!   mesh's elements, whose own whole run took 2.15 h.
+//!   mesh's elements, whose own whole run took 2.15 h. Its first run (build of ad29fd6, the
+//!   scene `inputs/scenes/seed_xfine_hyperbolic.yaml` with `newton_tol` 1e-5, 2 ranks, niced
+//!   beside other work) stalled on the integration noise in `fill_009`: relative residual
+//!   6.6e-5 after 8 cut-backs, a node of the new layer's rockfill (3.0 GiB on the larger rank so far).
+//!   The scene now stops Newton at 1e-4, as the medium and fine ones do.
 //!
 //! ## Scaling on clusters, on paper
 //!
@@ -1250,7 +1254,7 @@
 //!   and 0.0075 cm of the reference, the old one within 0.0080, 0.0185 and 0.0078; the two
 //!   differ from each other by up to 0.0045 MPa, 0.029 MPa and 0.0042 cm.
 //! * **The medium and fine scenes stop at 1e-4 from cfad9f2 on** (`scripts/make_seed_scenes.sh`;
-//!   the coarse, quake and extra-fine scenes keep 1e-5): on the same build, one run after the
+//!   the coarse and quake scenes keep 1e-5): on the same build, one run after the
 //!   other, 160.2 s against 261.0 s, **0.61 of the time**. Not a side-by-side benchmark of
 //!   two builds: the same build on two settings, whose counts (514 against 897 Newton
 //!   iterations, 1,041 against 1,733 residual evaluations, 5,782 against 9,534 GMRES
