@@ -89,20 +89,16 @@ declare -A note=(
   [fine]="fine mesh (86 fill layers as in the seed, about the paper's 74 521 elements)"
   [xfine]="extra-fine mesh (110 fill layers, 1 018 689 DOFs; the weak-scaling study's ~1M-DOF dam)"
 )
-# the resolutions' interface models: the extra-fine dam serves the weak-scaling study only
-declare -A models=(
-  [coarse]="hyperbolic mohr_coulomb gp_interface"
-  [medium]="hyperbolic mohr_coulomb gp_interface"
-  [fine]="hyperbolic mohr_coulomb gp_interface"
-  [xfine]="hyperbolic"
-)
+# the interface models of a resolution (all three unless named): the extra-fine dam serves the
+# weak-scaling study only
+declare -A models=([xfine]="hyperbolic")
 declare -A law=(
   [hyperbolic]="Clough-Duncan hyperbolic interface, seed Table 3 (k1 600, k2 1e7 kPa/m, n 0.85, phi 41.5, Rf 0.9)"
   [mohr_coulomb]="ideal elasto-plastic (Mohr-Coulomb) interface, seed Table 4 (k1 300, k2 1e7 kPa/m, n 0.8, phi 41.5)"
   [gp_interface]="generalized-plasticity interface, seed Table 2"
 )
 for res in coarse medium fine xfine; do
-  for model in ${models[$res]}; do
+  for model in ${models[$res]:-hyperbolic mohr_coulomb gp_interface}; do
     f=inputs/scenes/seed_${res}_${model}.yaml
     cat > "$f" <<YAML
 # Seed dam (Liu, Kong & Zou 2015, seed/summary.md section 2): construction in fill layers, face
