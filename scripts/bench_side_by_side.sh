@@ -11,6 +11,8 @@
 #   SCENE   default inputs/scenes/seed_coarse_hyperbolic.yaml; PAIRS default 5; RANKS default 2
 #   RUN_ARGS  (environment) more arguments of every `cfrd run`, e.g. a part of a scene:
 #           RUN_ARGS="--restart CK --stop-after-stage 22" (CK a stage checkpoint of SCENE)
+#   CHECKPOINT  (environment) `--checkpoint` of every run, default none (no checkpoint and no
+#           results published before the end); stage measures the writes at the stages' ends too
 # Prints one line per run and a summary: medians, the ratio this/base of the medians and the
 # range of the pairwise ratios. Run it alone on the machine.
 set -euo pipefail
@@ -36,7 +38,7 @@ declare -A bin=([this]="$this_target/release/cfrd" [base]="$base_target/release/
 run() {
     local out="$work/$1_$2"
     # shellcheck disable=SC2086 # RUN_ARGS is a list of arguments
-    mpirun -n "$ranks" "${bin[$1]}" run "$root/$scene" -o "$out" -q --checkpoint none ${RUN_ARGS:-} >"$out.log" 2>&1 \
+    mpirun -n "$ranks" "${bin[$1]}" run "$root/$scene" -o "$out" -q --checkpoint "${CHECKPOINT:-none}" ${RUN_ARGS:-} >"$out.log" 2>&1 \
         || { echo "the $1 build failed on $scene, see $out.log" >&2; exit 1; }
     python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["total_seconds"])' "$out/summary.json"
 }

@@ -3,14 +3,14 @@
 # working session or a cluster job's time limit). Every part is a `cfrd run` in OUT/part_<k>;
 # when a part stops before the end (killed, out of time), calling this script again with the
 # same arguments restarts from the newest checkpoint (`--restart OUT/part_<k>/checkpoint.h5`,
-# written at the end of every stage) into OUT/part_<k+1>. A restarted run gives the same results,
+# written at the end of stages, paced so that writing costs at most 5 % of the run) into OUT/part_<k+1>. A restarted run gives the same results,
 # bit for bit, as an uninterrupted one at the same rank count.
 #
 # Usage: scripts/run_in_parts.sh SCENE OUT [RANKS] [-- extra `cfrd run` arguments]
 #   RANKS defaults to 2. BIN overrides the binary (default: target/release/cfrd, built first).
 #   PART_STAGES=N ends each part cleanly after N stages (`cfrd run --stop-after-stage +N`), e.g.
 #   to fit a cluster job's time limit. Every part keeps the results.h5 of the stages it
-#   completed (published at every stage checkpoint; parts killed by cfrd before that feature
+#   completed up to its checkpoint (published at every stage checkpoint; parts killed by cfrd before that feature
 #   have none), and the parts are drawn together with
 #   `cfrd profiles SCENE OUT/part_1 OUT/part_2 ... -o OUT/profiles`.
 # Writes OUT/parts.csv: part, first stage, last stage begun, wall seconds (from /usr/bin/time), peak

@@ -410,8 +410,12 @@
 //!
 //! ## Restart and checkpoints
 //!
-//! A staged scene writes `<out>/checkpoint.h5` at the end of every completed stage
-//! (`output: { checkpoint: none }` turns it off). `output: { checkpoint: step }` writes it after
+//! A staged scene writes `<out>/checkpoint.h5` at the end of a completed stage
+//! (`output: { checkpoint: none }` turns it off): at every stage on small and medium meshes; on
+//! large ones once the run has computed 19 times as long as the last checkpoint and results
+//! copy took, so that writing costs at most 5 % of the run ([`crate::io::pacing`]; the fine
+//! seed mesh every one to five stages), and always after the last stage and at
+//! `--stop-after-stage`. `output: { checkpoint: step }` writes it after
 //! every converged load step as well, for stages longer than a job may run: a restart then
 //! continues inside the stage. `cfrd run --checkpoint stage|step|none` overrides the scene's
 //! choice without changing the scene, whose hash a restart checks, so a run in parts may switch
@@ -443,8 +447,8 @@
 //!   restart its own `-o`. Its `summary.json` carries the solver counters and the per-stage
 //!   wall times (`stage_seconds`) of the whole run, all parts.
 //! * A staged run publishes its `results.h5` at every stage checkpoint (a complete copy, never a
-//!   half-written file), so a run that is killed keeps the results of the stages it completed
-//!   as well as its checkpoint.
+//!   half-written file), so a run that is killed keeps the results of the stages up to its
+//!   checkpoint; a stage that fails leaves those of every stage it completed.
 //!
 //! ## Runs in parts
 //!

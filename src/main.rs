@@ -46,7 +46,7 @@ enum Command {
         /// Print nothing but errors.
         #[arg(short, long)]
         quiet: bool,
-        /// Restart from a checkpoint (`<out>/checkpoint.h5`, written at the end of every stage)
+        /// Restart from a checkpoint (`<out>/checkpoint.h5`, written at the end of stages)
         /// of the same scene: the run continues with the stage after the checkpoint's, and
         /// `results.h5` holds the stages run from there.
         #[arg(long, value_name = "CHECKPOINT")]
@@ -58,7 +58,8 @@ enum Command {
         /// `scripts/run_in_parts.sh`).
         #[arg(long, value_name = "K|+N", value_parser = parse_stop_after)]
         stop_after_stage: Option<cfrd::run::StopAfter>,
-        /// When to write `<out>/checkpoint.h5`: `stage` (end of every stage), `step` (also after
+        /// When to write `<out>/checkpoint.h5`: `stage` (end of stages, paced so that writing
+        /// costs at most 5 % of the run; always after the last and at a stop), `step` (also after
         /// every converged load step; a restart continues inside the stage) or `none`.
         /// Overrides the scene's `output.checkpoint` without changing the scene, so a run in
         /// parts may switch to step checkpoints for its long stages.

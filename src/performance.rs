@@ -129,8 +129,54 @@
 //! output; GP part 2 1,127 s, 2,018 s and 104 s. For context only (another build, the
 //! trilinear slab, the hyperbolic interface, not side by side): the whole fine run on the
 //! reduced multigrid below took 128.8 min with 1.61 GiB per rank, its fill_001–fill_020 9.4
-//! min and fill_051–fill_086 59.1 min. The fine hyperbolic scene with this build was started
-//! after these two and had not finished when this was written.
+//! min and fill_051–fill_086 59.1 min.
+//!
+//! **The hyperbolic interface, the scene from commit 2b492dc on** (`newton_tol: 1.0e-4`, the
+//! [medium mesh's tolerance](#the-medium-meshs-newton-tolerance); issue 20, acceptance 2):
+//! build of commit cfad9f2, `BIN=… scripts/run_in_parts.sh
+//! inputs/scenes/seed_fine_hyperbolic.yaml DIR/hyperbolic 2`, one part, alone on the machine;
+//! row `fine_hyperbolic` of `scripts/figures/seed_fine_runs.csv` and the run's `summary.json`.
+//! Not side by side with the two runs above (another build and Newton tolerance).
+//!
+//! | interface | wall time | peak memory per rank | Newton iterations | residual evaluations | steps | cut-backs | GMRES iterations | preconditioner builds | Newton per step (median / mean / max) | open / slipping interface points (of 25,304) |
+//! |---|---|---|---|---|---|---|---|---|---|---|
+//! | hyperbolic | 2,549.5 s (42.5 min) | 1.98 / 1.40 GiB | 1,058 | 2,206 | 760 | 0 | 10,413 | 164 | 1 / 1.39 / 6 | 924 / 1,674 |
+//!
+//! | stages | wall time | Newton per step | GMRES per Newton iteration |
+//! |---|---|---|---|
+//! | fill_001–fill_020 | 2.7 min | 1.82 | 5.1 |
+//! | fill_021–fill_050 | 7.5 min | 1.35 | 7.9 |
+//! | slab_1 | 48 s | 1.50 | 22.6 |
+//! | fill_051–fill_086 | 17.4 min (20–35 s per stage) | 1.16 | 12.8 |
+//! | slab_2 (the hard case) | 66 s | 1.25 | 26.0 |
+//! | slab_3 | 44 s | 1.00 | 21.9 |
+//! | impound_1–impound_6 | 7.0 min (43–96 s per stage) | 1.65 | 17.7 |
+//!
+//! Under the 3 GiB per rank of acceptance 2, over its 30 min. Of the 2,549.5 s, 742.6 s went
+//! into assembly, 1,427.3 s into the linear solves and 332.8 s into output (`phase_seconds`);
+//! slab stage II passed with no cut-back.
+//!
+//! **Where that run's output time went, and the paced stage-end writes.** The run published
+//! `results.h5` and wrote its checkpoint at the end of every stage; the publication copies the
+//! whole file, which grows by 17 MB a stage to 1.6 GB. Timed in a copy of the code (build of
+//! 50e4ecd with timing lines added, then removed), the same scene to `--stop-after-stage 55`
+//! (the fill after slab stage I), 2 ranks alone: the copies took 0.17 s at stage 8, 0.4 s at
+//! stage 16 and 3.4–3.8 s from stage 52 on (0.9 GB), 79 s in all, the checkpoints 21.5 s and
+//! the results of each stage 0.05–0.23 s (5.8 s in all), in a run of 796.8 s. The quadratic
+//! growth is what [`crate::io::pacing`] removes: the stage-end writes now come once the run has
+//! computed 19 times as long as the last ones took. The same 55 stages, one after the other
+//! alone on the machine (`/usr/bin/time -v mpirun -n 2 cfrd run
+//! inputs/scenes/seed_fine_hyperbolic.yaml -o OUT --checkpoint stage --stop-after-stage 55`,
+//! both with `-log_view`; one pair, not alternated):
+//!
+//! | build | wall time (`total_seconds`) | output (`phase_seconds`) | checkpoints | assembly / linear solves | peak memory per rank |
+//! |---|---|---|---|---|---|
+//! | 50e4ecd with the timing lines | 796.8 s | 106.8 s | 21.5 s | 286.9 / 386.3 s | 1,333 / 1,100 MiB |
+//! | paced writes | 742.8 s (0.932) | 39.9 s | 9.8 s | 290.4 / 393.5 s | 1,333 / 1,097 MiB |
+//!
+//! Both made 664 Newton iterations and 4,749 GMRES iterations, and their results are the same
+//! bits (`cfrd compare`: 0 for every field of every stage). The whole fine run with the paced
+//! writes has not been timed.
 //!
 //! **The first fine run** (canonical LU).
 //! Fine mesh (76,502 elements, 256,461 DOFs, 86 fill layers, 95 stages; MUMPS on OpenBLAS),

@@ -5,6 +5,7 @@
 
 use crate::io::checkpoint::{self, CHECKPOINT_FILE};
 use crate::io::hdf5_out::{strain_output_components, OwnedMesh, ResultsFile, StepInfo};
+use crate::io::pacing::StageEndWrites;
 use crate::io::summary::{ModalSummary, Phase, PhaseTimer, RunSummary, StageSeconds};
 use crate::linalg::petsc::Petsc;
 use crate::parallel::{any_error, broadcast_vec, EXIT_INPUT, EXIT_IO, EXIT_SOLVER};
@@ -296,6 +297,7 @@ pub fn run_scene(
     // (crate::quake, crate::quake_probes)
     let first_dynamic = scene.stages.iter().position(|s| s.dynamic.is_some());
     let recorder = QuakeRecorder::new(scene);
+    let mut writes = StageEndWrites::new();
     for (k, stage) in scene.stages.iter().enumerate().skip(first_stage) {
         let stage_start = Instant::now();
         let counts_at_start = stage_counts(&report);
@@ -395,7 +397,10 @@ pub fn run_scene(
             newton_iterations: counts.1 - counts_at_start.1,
             ksp_iterations: counts.2 - counts_at_start.2,
         });
-        if checkpoints {
+        // stage checkpoints are paced (crate::io::pacing); step checkpoints are not
+        let must = step_checkpoints || k + 1 == n_stages || stop_after_stage == Some(k + 1);
+        if checkpoints && writes.due(world, must) {
+            let began = Instant::now();
             // the results of the completed stages are published before the checkpoint that
             // follows them: a run killed later leaves both (a stage in both a killed part's and
             // the next part's results is one run again after a kill between the two writes)
@@ -404,6 +409,7 @@ pub fn run_scene(
                 message: format!("writing results: {m}"),
             })?;
             ckpt_seconds += write_checkpoint(world, &ckpt, scene, &problem, &report, None)?;
+            writes.wrote(world, began);
         }
         timer.stop();
         if stop_after_stage == Some(k + 1) && k + 1 < n_stages {

@@ -323,9 +323,10 @@
 //! Source (the trilinear slab): the fine run of commit 6549cb1 (`scripts/run_in_parts.sh` on
 //! `inputs/scenes/seed_fine_hyperbolic.yaml`, 2 ranks, seven parts, then
 //! `FINE=DIR scripts/make_seed_static_figures.sh` of that commit, whose fine part is now
-//! `STATIC_RUNS=… scripts/make_seed_fine_figures.sh`: `seed_hyperbolic_meshes.png`,
-//! `seed_fine_hyperbolic_fig*.png`). Values interpolated linearly between each profile's points,
-//! so a medium value may differ from the medium table by a few hundredths.
+//! `STATIC_RUNS=… scripts/make_seed_fine_figures.sh`: `seed_hyperbolic_meshes.png`; the
+//! `seed_fine_hyperbolic_fig*.png` of today are those of the next section's run). Values
+//! interpolated linearly between each profile's points, so a medium value may differ from the
+//! medium table by a few hundredths.
 //!
 //! ![fine, medium and coarse mesh: hyperbolic slab stresses and deflection][meshes]
 //!
@@ -351,27 +352,40 @@
 //! parts ran with a cfrd that wrote results only at the end of a run, so those stages exist
 //! only in their checkpoints (a run now publishes its results at every stage checkpoint).
 //!
-//! ### Fine mesh: the ideal elasto-plastic and GP interfaces
+//! ### Fine mesh: the three interface models
 //!
-//! Source: the fine Mohr–Coulomb and GP-interface runs of [`crate::performance`] ("The fine
-//! run"; build of commit 215176c, the reduced multigrid, incompatible-modes slab, the bounded
-//! GP reading), `scripts/make_seed_fine_figures.sh DIR`: `seed_fine_slab.png`,
-//! `seed_fine_<model>_fig*.png`. Values interpolated linearly between each profile's points.
-//! The fine hyperbolic run with the same build had not finished when this was written, so its
-//! column is missing; the hyperbolic fine values above come from the trilinear slab.
+//! Source: the fine runs of [`crate::performance`] ("The fine run"; the reduced multigrid,
+//! incompatible-modes slab, the bounded GP reading): Mohr–Coulomb and GP interface with the
+//! build of commit 215176c and `newton_tol` 1e-5, the hyperbolic interface with the build of
+//! commit cfad9f2 and the scene's `newton_tol` 1e-4 of today (on the medium mesh the two
+//! tolerances moved the slab values by at most 0.03 MPa and 0.005 cm, [`crate::performance`],
+//! "The medium mesh's Newton tolerance"); `scripts/make_seed_fine_figures.sh DIR` with the three
+//! run directories under `DIR`: `seed_fine_slab.png`, `seed_fine_<model>_fig*.png`. Values
+//! interpolated linearly between each profile's points.
 //!
 //! ![slab stresses and deflection by interface model, fine mesh][fine]
 //!
-//! | elevation | state | σ_s MC / GP | σ_a MC / GP | deflection MC / GP |
+//! | elevation | state | σ_s hyperbolic / MC / GP | σ_a hyperbolic / MC / GP | deflection hyperbolic / MC / GP |
 //! |---|---|---|---|---|
-//! | 2697 m | end of construction | −2.91 / −2.91 | −1.00 / −1.02 | −0.2 / −0.2 |
-//! | 2722 m | end of construction | −2.12 / −2.19 | −1.21 / −1.25 | −0.2 / −0.2 |
-//! | 2703 m | after impoundment | −7.59 / −7.83 | −5.24 / −5.31 | 11.4 / 11.4 |
-//! | 2722 m | after impoundment | −7.88 / −8.09 | −6.06 / −6.19 | 13.7 / 13.8 |
-//! | 2761 m | after impoundment | −4.13 / −3.94 | −5.41 / −5.60 | 11.4 / 11.5 |
-//! | 2814 m | after impoundment | −1.40 / −1.39 | −2.93 / −2.94 | 5.2 / 5.3 |
+//! | 2697 m | end of construction | −2.67 / −2.91 / −2.91 | −0.92 / −1.00 / −1.02 | −0.2 / −0.2 / −0.2 |
+//! | 2722 m | end of construction | −1.96 / −2.12 / −2.19 | −1.12 / −1.21 / −1.25 | −0.2 / −0.2 / −0.2 |
+//! | 2703 m | after impoundment | −7.80 / −7.59 / −7.83 | −5.31 / −5.24 / −5.31 | 11.4 / 11.4 / 11.4 |
+//! | 2722 m | after impoundment | −8.27 / −7.88 / −8.09 | −6.25 / −6.06 / −6.19 | 13.7 / 13.7 / 13.8 |
+//! | 2761 m | after impoundment | −4.22 / −4.13 / −3.94 | −5.87 / −5.41 / −5.60 | 11.4 / 11.4 / 11.5 |
+//! | 2814 m | after impoundment | −1.50 / −1.40 / −1.39 | −3.24 / −2.93 / −2.94 | 5.2 / 5.2 / 5.3 |
 //!
-//! * **The two models agree closely on the fine mesh.** Largest difference over the section
+//! * **The hyperbolic interface compresses the slab most after impoundment.** Its largest slope
+//!   compression is −8.43 MPa (2714 m; MC −8.09, GP −8.39), its largest axial one −6.54 MPa
+//!   (MC −6.22, GP −6.29); the deflections agree within 0.25 cm (largest 14.1 cm, 2736 m).
+//!   Largest difference over the section from the hyperbolic run (as a fraction of the larger
+//!   of the two runs' largest values), after impoundment: 0.83 MPa in σ_s at the slab's foot
+//!   (9.8 %, MC) and 0.64 MPa at 2738 m (7.5 %, GP), 0.47 MPa in σ_a (7.2 %, MC) and 0.42 MPa
+//!   (6.4 %, GP). At the end of construction the two plastic interfaces compress the slab's
+//!   foot 0.25 MPa more (8.3–8.5 % in σ_s).
+//! * **Against the trilinear slab** (the table above): the incompatible-modes slab moves the
+//!   hyperbolic fine run's σ_s by at most 0.03 MPa in these rows and its σ_a by up to 0.20 MPa
+//!   (2703 m, −5.31 against −5.51).
+//! * **The two plastic interfaces agree closely on the fine mesh.** Largest difference over the section
 //!   (as a fraction of the larger of the two runs' largest values): at the end of construction
 //!   0.09 MPa in σ_s (2.9 %, 2732 m) and 0.07 MPa in σ_a (4.7 %, 2804 m); after impoundment
 //!   0.38 MPa in σ_s (4.5 %, at the slab's foot, 2682 m), 0.20 MPa in σ_a (3.2 %, 2754 m) and
@@ -386,7 +400,10 @@
 //!   above it larger"): on the fine mesh the GP interface's axial compression is larger than
 //!   the ideal elasto-plastic one's over the whole section after impoundment (−5.31 against
 //!   −5.24 MPa at 2703 m, −5.60 against −5.41 at 2761 m), by at most 0.20 MPa: not reproduced
-//!   against this model. The comparison with the hyperbolic interface awaits its run.
+//!   against this model. Against the hyperbolic interface the GP one's axial compression is
+//!   the smaller from about 2715 m up (by 0.20–0.30 MPa at every point above 2760 m) and the
+//!   larger at the slab's foot (by 0.42 MPa at 2682 m): the lower half of the finding holds
+//!   in part, the upper half is reversed.
 //! * **The GP interface itself** (`fig11_interface.csv` after impoundment): a closure of
 //!   7.3–7.4 mm over most of the face (median 7.32 mm, the Bandis limit 8.0 mm), 4.1–4.4 mm
 //!   just above the feet of slab stages II and III (2738 m, 2806 m) and 6.0–7.0 mm above the

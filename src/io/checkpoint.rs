@@ -1,7 +1,7 @@
 //! Checkpoints of staged static runs and the exact restart from them (issue 4).
 //!
-//! At the end of every completed stage (scene option `output.checkpoint: stage`, the default for
-//! scenes with `stages`), and with `output.checkpoint: step` also after every converged load
+//! At the end of completed stages (scene option `output.checkpoint: stage`, the default for
+//! scenes with `stages`; on large meshes not at every stage, [`crate::io::pacing`]), and with `output.checkpoint: step` also after every converged load
 //! step, `cfrd run` writes `<out>/checkpoint.h5` with the whole state of the static problem;
 //! `cfrd run SCENE --restart <out>/checkpoint.h5` loads it and continues with the next stage
 //! (or inside the stage, from a step checkpoint). A restart at the same rank count gives results bitwise equal to the

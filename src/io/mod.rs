@@ -13,6 +13,7 @@
 //! | [`compare`] | `cfrd compare`: field differences between two results files |
 //! | [`export`] | `cfrd export`: one step's fields as CSV, by set or probe |
 //! | [`outdir`] | `cfrd run`'s output directory: another run's files, stale temporaries |
+//! | [`pacing`] | when a staged run publishes its results and writes its checkpoint |
 //! | [`preflight`] | checks of `cfrd run`'s file arguments before HDF5 opens them |
 //!
 //! # The results file (format `cfrd-results`, version 1)
@@ -113,6 +114,7 @@ pub mod guard;
 pub mod hdf5_out;
 pub mod integrity;
 pub mod outdir;
+pub mod pacing;
 pub mod preflight;
 pub mod redistribute;
 pub mod summary;

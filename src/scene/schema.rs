@@ -463,7 +463,7 @@ pub struct OutputSpec {
     #[serde(default)]
     pub profiles: Option<crate::profiles::ProfilesSpec>,
     /// When to write `checkpoint.h5` into the output directory for `cfrd run --restart`:
-    /// `stage` (at the end of every completed stage) or `none`. Default: `stage` for scenes
+    /// `stage` (at the end of completed stages, paced: [`crate::io::pacing`]), `step` or `none`. Default: `stage` for scenes
     /// with `stages`, `none` otherwise.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub checkpoint: Option<CheckpointMode>,
@@ -473,7 +473,9 @@ pub struct OutputSpec {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum CheckpointMode {
-    /// At the end of every completed stage (replacing the previous checkpoint).
+    /// At the end of completed stages (replacing the previous checkpoint): every stage unless
+    /// writing it and the results takes more than 1/20 of the time since the last, and always
+    /// after the last stage and at a stop ([`crate::io::pacing`]).
     Stage,
     /// After every converged load step, and at the end of every stage: a restart continues
     /// inside the stage (for stages that take longer than a job may run). Each such
