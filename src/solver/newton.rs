@@ -99,6 +99,12 @@ struct NewtonStep<'s, 'a> {
 }
 
 impl NewtonStep<'_, '_> {
+    /// ‖F‖ / max(‖f_ext‖, ‖f_int‖, ‖g‖) of the last residual evaluation (the exact norm at the
+    /// iterate SNES accepted, not VecNorm's), which `newton_tol` bounds.
+    fn relative_residual(&self) -> f64 {
+        self.residual_norm / self.ref_norm
+    }
+
     /// After SNES ended with `outcome` at `x`: commits the states of the solution (evaluated
     /// there again if the last residual was not at x; collective), or names the failure.
     fn conclude(self, outcome: SnesOutcome, iterations: u32, x: &Vector) -> Result<(), SolveError> {
@@ -267,13 +273,11 @@ impl SnesProblem for NewtonStep<'_, '_> {
     }
 
     fn last_residual_converged(&self) -> bool {
-        self.residual_at.is_some()
-            && self.residual_norm / self.ref_norm <= self.model.scene.file.solver.newton_tol
+        self.residual_at.is_some() && self.relative_residual() <= self.model.scene.file.solver.newton_tol
     }
 
     fn converged(&mut self, it: u32, _fnorm: f64, linear_iterations: u32) -> Option<bool> {
-        // the exact norm of the last residual (at the iterate SNES accepted), not VecNorm's
-        let rel = self.residual_norm / self.ref_norm;
+        let rel = self.relative_residual();
         if it > 0 {
             self.report.ksp_iterations.push(linear_iterations);
             self.last_linear_iterations = linear_iterations;
