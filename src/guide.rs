@@ -134,7 +134,7 @@
 //! |---|---|---|
 //! | coarse | 8 fill layers, 30 m panels, 3 impoundment stages | canonical LU (PETSc's LU) |
 //! | medium | 30 fill layers, 15 m panels, 4 impoundment stages | reduced multigrid (`reduced_amg`), load steps started from the last step's rate (`predictor: extrapolate`); its quake scenes canonical LU with MUMPS and the plain start |
-//! | fine | 86 fill layers (as the seed), 2 elements per panel, 6 impoundment stages | reduced multigrid (`reduced_amg`), `predictor: extrapolate`; about 2 h on 2 ranks, run it [in parts](#runs-in-parts) |
+//! | fine | 86 fill layers (as the seed), 2 elements per panel, 6 impoundment stages | reduced multigrid (`reduced_amg`), `predictor: extrapolate`; 42–77 min on 2 ranks depending on the interface ([`crate::performance`], "The fine run"), run it [in parts](#runs-in-parts) where a job or a session is shorter |
 //!
 //! All of them use 8 load steps per stage and at most 15 Newton iterations per step; the
 //! coarse scenes and the quake scenes stop Newton at `newton_tol: 1.0e-5` (above the noise of
@@ -156,7 +156,10 @@
 //!   whose Newton iteration or material update fails is halved, at most `solver.max_cutbacks`
 //!   times in a row, and grown back after two successes; the run summary counts cut-backs and
 //!   Newton iterations per step (`newton_per_step`). With GP rockfill, steps too large cost
-//!   more than they save (measurements in [`crate::performance`]).
+//!   more than they save (measurements in [`crate::performance`]). With `solver.predictor:
+//!   extrapolate` a step whose extrapolated start fails in a material update (a GP interface
+//!   closed beyond its bound) first starts again from the last converged state
+//!   (`predictions_dropped` in the summary), and is halved only if that fails too.
 //! * **Watching a run.** `solver: { monitor: true }`, or `cfrd run --monitor` (which leaves the
 //!   scene and its hash alone, so a restarted run can be watched), prints every Newton
 //!   residual and the reason and place (the node of the largest out-of-balance force) of every

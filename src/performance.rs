@@ -88,6 +88,33 @@
 //! cut back 11 times (13 extra steps, each with its failed attempt). The previous scene
 //! (`newton_tol` 1e-5) on the same build took 261.0 s for the hyperbolic interface.
 //!
+//! **Dropping a predicted start the GP interface cannot take.** `--monitor` on that scene shows
+//! why it cut back: 9 of the 11 cut-backs came before any Newton iteration, at the extrapolated
+//! start of a step (λ = 0.25–0.56 of `slab_1`–`slab_3`, `impound_1`, `impound_2` and
+//! `impound_4`), where an interface point would close beyond its void-ratio bound
+//! (`closure beyond the void-ratio bound (e would be 0.130 < e_min = 0.15)`) or need more than
+//! NMAX substeps: the closure stiffens towards its bound, so the straight-line extrapolation
+//! overshoots it. Halving the step then repeats the overshoot with half the increment, up to
+//! twice. Now a step whose predicted start fails in a material update starts again from
+//! the last converged state before it is cut back ([`crate::solver::Problem::solve_step`];
+//! `predictions_dropped` in `summary.json`; test
+//! `a_predicted_start_beyond_the_gp_interface_bound_is_dropped_not_cut_back`, where 2 MPa on
+//! an interface in 8 steps took 15 steps and 4 cut-backs before and 8 steps and none now).
+//! Medium GP-interface scene, 2 ranks, `--monitor --checkpoint none`, build of dc7a8a1 and of
+//! this change, one run after the other alone on the machine (one pair, not alternated):
+//!
+//! | build | wall time | assembly / linear solves | Newton iterations | residual evaluations | steps | cut-backs | predicted starts dropped | GMRES iterations |
+//! |---|---|---|---|---|---|---|---|---|
+//! | dc7a8a1 | 214.2 s | 112.9 / 102.1 s | 560 | 1,277 | 309 | 11 | – | 6,577 |
+//! | predicted starts dropped | 199.7 s (0.932) | 105.5 / 97.2 s | 540 | 1,202 | 297 | 1 | 6 | 6,352 |
+//!
+//! Still over the 3 min. The one cut-back left is `slab_1`'s second step, whose extrapolated
+//! start has a relative residual of 0.998 (the first step's rate carries the new slab's
+//! settling onto its interface) and does not converge in 15 iterations (the other Newton
+//! failure of dc7a8a1's run, in `impound_3`, is gone). Against the hyperbolic scene's 160.2 s
+//! (build of cfad9f2, above: 514 Newton iterations, 74.1 s of assembly) the GP interface's own
+//! integration is most of what is left: 105.5 s of assembly for 540 iterations.
+//!
 //! ## The fine run
 //!
 //! **The ideal elasto-plastic and GP interfaces on the reduced multigrid** (issue 20,
@@ -311,6 +338,16 @@
 //! took 412 Newton iterations, 7,072 GMRES iterations and 18 cut-backs in 402.9 s, against
 //! 314, 2,678, 0 and 59.4 s with the continuum tangent everywhere (the prototype's test of the
 //! pressure cost both the same). Rejected.
+//!
+//! **The last stage's rate for the first step.** A stage's first step starts from the converged
+//! state (the predictor has no rate yet). A second prototype (a copy of the code of 81c54b3,
+//! not committed) started it instead from the previous static stage's whole increment as the
+//! rate, x⁰ = u + λ₁·(u − u_stage_start). Medium hyperbolic scene to `--stop-after-stage 20`,
+//! 2 ranks, the same binary with and without it, one run after the other, alone: 119.7 s,
+//! 402 Newton iterations, 842 residual evaluations, 3,102 GMRES iterations with it, against
+//! 55.3 s, 314, 624 and 2,678 without. The next layer settles where the last one did not (its
+//! increment peaks one layer higher), so the guess is further from the answer than the
+//! converged state is, and the longer start increments cost GP substeps. Rejected.
 //!
 //! ## Newton iterations, load steps and the integration noise
 //!

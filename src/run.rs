@@ -508,6 +508,7 @@ pub fn run_scene(
     summary.residual_evaluations = report.residual_evaluations;
     summary.steps = report.steps as u64;
     summary.cutbacks = report.cutbacks as u64;
+    summary.predictions_dropped = report.predictions_dropped as u64;
     summary.newton_per_step = report.newton_per_step.clone();
     summary.factorizations = report.factorizations;
     summary.interface_points = counts.points;

@@ -316,3 +316,40 @@ fn joint_opens_under_tension_with_the_tension_stiffness() {
     );
     assert_eq!(o.status.code(), Some(1), "{}", text(&o));
 }
+
+/// The extrapolating predictor against the GP interface's void-ratio bound (issue 20): the
+/// upper block pressed onto the interface by 2 MPa in 8 load steps. The closure stiffens
+/// towards its bound (δ_max = 8 mm), so the second step's extrapolated start closes the
+/// interface beyond it and its material update fails there. That start is dropped and Newton
+/// starts again from the last converged state: the 8 steps complete with no cut-back (before,
+/// the step was halved 4 times), on 1 and 2 ranks alike.
+#[test]
+fn a_predicted_start_beyond_the_gp_interface_bound_is_dropped_not_cut_back() {
+    let dir = tempdir();
+    let loads = "{ pressure: [ { faces: top, value: 2.0e6 } ] }";
+    let yaml = scene("{ model: gp_interface }", "", loads, 8).replace(
+        "newton_max_iterations: 40 }",
+        "newton_max_iterations: 40, predictor: extrapolate }",
+    );
+    let mut closure = Vec::new();
+    for np in [1, 2] {
+        let o = run(dir.path(), np, "press", &yaml).unwrap_or_else(|e| panic!("np {np}: {e}"));
+        let s = &o.summary;
+        let count = |k: &str| s[k].as_u64().unwrap();
+        println!(
+            "np {np}: δ_n = {:.6e} m, {} steps, {} cut-backs, {} predicted starts dropped",
+            o.jump[2],
+            count("steps"),
+            count("cutbacks"),
+            count("predictions_dropped")
+        );
+        assert_eq!((count("steps"), count("cutbacks")), (8, 0));
+        assert!(count("predictions_dropped") >= 1);
+        assert!(o.jump[2] < 0.0 && o.jump[2] > -8.0e-3, "{}", o.jump[2]);
+        closure.push(o.jump[2]);
+    }
+    assert!(
+        ((closure[0] - closure[1]) / closure[0]).abs() < 1e-8,
+        "{closure:?}"
+    );
+}

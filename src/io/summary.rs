@@ -227,6 +227,10 @@ pub struct RunSummary {
     /// Step cut-backs (failed steps retried with a smaller increment).
     #[serde(default)]
     pub cutbacks: u64,
+    /// Predicted starts of steps dropped because a material update failed there; Newton then
+    /// started from the last converged state (`solver.predictor: extrapolate`).
+    #[serde(default)]
+    pub predictions_dropped: u64,
     /// Newton iterations of each completed step.
     #[serde(default)]
     pub newton_per_step: Vec<u32>,
@@ -412,6 +416,7 @@ mod tests {
             element_seconds_per_rank: vec![0.5, 0.25],
             steps: 3,
             cutbacks: 1,
+            predictions_dropped: 1,
             newton_per_step: vec![2, 2, 2],
             factorizations: 5,
             interface_points: 16,

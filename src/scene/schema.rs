@@ -315,7 +315,8 @@ pub struct SolverSpec {
     /// Initial guess of a static load step's Newton iterations: `extrapolate` carries the
     /// last converged step's displacement rate du/dλ over the new step (from the second step
     /// of a stage on; `solver::integrator::QuasiStatic`), `none` starts from the converged
-    /// state. Default `none`. A dynamic stage has its own (`dynamic.predictor`,
+    /// state. Default `none`. An extrapolated start that a material update cannot take is
+    /// dropped for the converged state before the step is cut back. A dynamic stage has its own (`dynamic.predictor`,
     /// [`crate::scene::dynamic::DynamicSpec`]).
     #[serde(default)]
     pub predictor: Predictor,

@@ -62,6 +62,11 @@ pub enum SolveError {
     /// A material update failed on some rank (message of the lowest failing rank).
     #[error("{0}")]
     Collective(String),
+    /// A material update failed on some rank at the step's initial guess, before any Newton
+    /// iteration (message of the lowest failing rank): a predicted start is then dropped for
+    /// the last converged state ([`crate::solver::Problem::solve_step`]).
+    #[error("{0}")]
+    AtStart(String),
     /// A load step could not be completed even after cutting it back.
     #[error(
         "{} from {} to {} ({}) failed after {cutbacks} cut-back(s); the last converged state is {}: \
@@ -89,6 +94,7 @@ impl SolveError {
             self,
             SolveError::Material { .. }
                 | SolveError::Collective(_)
+                | SolveError::AtStart(_)
                 | SolveError::Newton { .. }
                 | SolveError::LineSearch { .. }
                 | SolveError::Linear { .. }

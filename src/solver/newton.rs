@@ -66,6 +66,8 @@ pub(super) fn solve(
         residual_at: None,
         f_last,
         failure: None,
+        evaluations: 0,
+        start_failed: false,
         report,
         assembly_seconds: 0.0,
         last_linear_iterations: 0,
@@ -93,6 +95,10 @@ struct NewtonStep<'s, 'a> {
     f_last: Option<Vector>,
     /// Message of the last failed material update.
     failure: Option<String>,
+    /// Residual evaluations of this step.
+    evaluations: u32,
+    /// Whether the first residual evaluation, at the initial guess, failed.
+    start_failed: bool,
     report: &'s mut SolveReport,
     assembly_seconds: f64,
     last_linear_iterations: u32,
@@ -131,10 +137,15 @@ impl NewtonStep<'_, '_> {
                 self.report.newton_iterations += iterations;
                 model.commit()
             }
-            SnesOutcome::DomainError => Err(SolveError::Collective(
-                self.failure
-                    .unwrap_or_else(|| "the residual could not be evaluated".into()),
-            )),
+            SnesOutcome::DomainError => {
+                let m = self
+                    .failure
+                    .unwrap_or_else(|| "the residual could not be evaluated".into());
+                Err(match self.start_failed {
+                    true => SolveError::AtStart(m),
+                    false => SolveError::Collective(m),
+                })
+            }
             SnesOutcome::LinearSolve(reason) => Err(SolveError::Linear {
                 reason,
                 iterations: self.last_linear_iterations,
@@ -199,7 +210,9 @@ impl NewtonStep<'_, '_> {
     fn evaluate_residual(&mut self, x: &Vector, f: &mut Vector) -> Result<bool, PetscError> {
         self.residual_at = None;
         self.report.residual_evaluations += 1;
+        self.evaluations += 1;
         if !self.evaluate_at(x, false, false)? {
+            self.start_failed = self.evaluations == 1;
             return Ok(false);
         }
         f.copy_from(&self.f_int)?;

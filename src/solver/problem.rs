@@ -11,7 +11,7 @@ use super::model::Model;
 use super::newton::{self, StepTarget};
 use super::report::{InterfaceCounts, SolveReport};
 use super::step_control::{StepControl, StepKind};
-use crate::linalg::petsc::{CanonicalSettings, LinearMethod, Petsc, Snes};
+use crate::linalg::petsc::{CanonicalSettings, LinearMethod, Petsc, Snes, Vector};
 use crate::scene::schema::LinearSolver;
 use crate::scene::Scene;
 use mpi::topology::SimpleCommunicator;
@@ -198,9 +198,45 @@ impl<'a> Problem<'a> {
         r
     }
 
-    /// Newton on SNES for the step at load factor `lambda` ([`newton`]); `at` names the step's
-    /// end for the monitor.
+    /// Newton on SNES for the step at load factor `lambda` ([`newton`]) from the integrator's
+    /// predicted start; `at` names the step's end for the monitor. A predicted start that a
+    /// material update cannot take (a GP interface closed beyond its void-ratio bound,
+    /// [`crate::material::interface_gp`], or too many substeps) is dropped, and Newton starts again from the last converged
+    /// state, before the step is cut back ([`SolveReport::predictions_dropped`]).
     fn newton(&mut self, lambda: f64, at: String, report: &mut SolveReport) -> Result<(), SolveError> {
+        let mut guess = self.committed_copy()?;
+        self.integrator.predict(&mut guess)?;
+        let moved = guess.read(|g| self.model.u_committed.read(|u| g != u))??;
+        let predicted = crate::parallel::any_true(self.comm, moved);
+        match self.newton_from(lambda, at.clone(), guess, report) {
+            Err(SolveError::AtStart(m)) if predicted => {
+                self.model.revert()?;
+                report.predictions_dropped += 1;
+                if self.scene.file.solver.monitor && self.comm.rank() == 0 {
+                    eprintln!("predicted start of the step to {at} dropped: {m}");
+                }
+                let guess = self.committed_copy()?;
+                self.newton_from(lambda, at, guess, report)
+            }
+            r => r,
+        }
+    }
+
+    /// A copy of the committed displacement (owned DOFs).
+    fn committed_copy(&self) -> Result<Vector, SolveError> {
+        let mut u = self.model.u_committed.duplicate()?;
+        u.copy_from(&self.model.u_committed)?;
+        Ok(u)
+    }
+
+    /// Newton on SNES for the step at load factor `lambda` from the initial guess `guess`.
+    fn newton_from(
+        &mut self,
+        lambda: f64,
+        at: String,
+        guess: Vector,
+        report: &mut SolveReport,
+    ) -> Result<(), SolveError> {
         let mut f_ext = self.model.u.duplicate()?;
         let terms = &self.scene.stages[self.stage].terms;
         self.loads
@@ -216,9 +252,6 @@ impl<'a> Problem<'a> {
             .snes
             .take()
             .expect("the nonlinear solver is in place between steps");
-        let mut guess = self.model.u_committed.duplicate()?;
-        guess.copy_from(&self.model.u_committed)?;
-        self.integrator.predict(&mut guess)?;
         let solved = newton::solve(
             &mut self.model,
             &mut snes,

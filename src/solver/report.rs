@@ -27,6 +27,10 @@ pub struct SolveReport {
     pub cutbacks: u32,
     /// Newton iterations of each converged step.
     pub newton_per_step: Vec<u32>,
+    /// Predicted starts of steps dropped because a material update failed there (Newton then
+    /// started from the last converged state; [`crate::solver::Problem::solve_step`]).
+    #[serde(default)]
+    pub predictions_dropped: u32,
     /// Numeric factorizations of the direct solvers (the reduced multigrid: preconditioners
     /// built, each factoring the structure).
     #[serde(default)]
