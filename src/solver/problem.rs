@@ -201,8 +201,10 @@ impl<'a> Problem<'a> {
     /// Newton on SNES for the step at load factor `lambda` ([`newton`]) from the integrator's
     /// predicted start; `at` names the step's end for the monitor. A predicted start that a
     /// material update cannot take (a GP interface closed beyond its void-ratio bound,
-    /// [`crate::material::interface_gp`], or too many substeps) is dropped, and Newton starts again from the last converged
-    /// state, before the step is cut back ([`SolveReport::predictions_dropped`]).
+    /// [`crate::material::interface_gp`], or too many substeps) is dropped, and Newton starts
+    /// again from the last converged state before the step is cut back
+    /// ([`SolveReport::predictions_dropped`]). Whether the guess moved is one comparison and
+    /// one reduction per step, none per iteration.
     fn newton(&mut self, lambda: f64, at: String, report: &mut SolveReport) -> Result<(), SolveError> {
         let mut guess = self.committed_copy()?;
         self.integrator.predict(&mut guess)?;
