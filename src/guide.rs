@@ -313,10 +313,11 @@
 //!   cores (or jobs side by side), set `OMPI_MCA_mpi_yield_when_idle=1`, as the tests do:
 //!   a waiting rank then yields its core instead of spinning on it (the default dam to stage 5,
 //!   two 2-rank jobs on 2 cores: 231 s each spinning, 15 s yielding). The corrections are
-//!   solved only as tightly as Newton needs (Eisenstat–Walker; `rtol` is not used) and the
-//!   preconditioner is kept across the Jacobians of a stage while GMRES converges quickly;
-//!   the run summary counts its builds as factorizations. Options take the prefix `reduced_`
-//!   (`-reduced_split false`, `-reduced_refresh_after N`,
+//!   solved only as tightly as Newton needs (Eisenstat–Walker; `rtol` is not used); the
+//!   fill's multigrid is kept across the Jacobians of a stage while GMRES converges quickly,
+//!   and the structure (slab, interfaces, joints) is factored afresh at every Jacobian; the
+//!   run summary counts these factorizations. Options take the prefix `reduced_`
+//!   (`-reduced_split false`, `-reduced_refresh_after N`, `-reduced_structure_refresh_after N`,
 //!   `-reduced_fieldsplit_fill_pc_type hypre`, ...); `-snes_ksp_ew false` solves to `rtol`.
 //! * `linear_solver: distributed_lu`: MUMPS's LU of the distributed matrix, factored by all
 //!   ranks together. Each rank holds only its share of the matrix and the factors, so a mesh

@@ -1240,6 +1240,60 @@
 //! On 2 ranks the gain is small; on 8 ranks the busiest part evaluates fewer
 //! elements than before (7–40 %).
 //!
+//! ## Side by side: the structure factored afresh at every Jacobian
+//!
+//! Issue 20, acceptance 2. `-log_view` on the fine hyperbolic scene's `fill_051` (restarted
+//! from the checkpoint after `slab_1` of the whole fine run below, 2 ranks; build of
+//! 42e465a): 17.4 s of its 27 s in `KSPSolve`, of which the fill's SOR smoothing 8.0 s and
+//! 134 GMRES iterations for 10 Newton iterations, the preconditioner built twice. Which part
+//! of the lagged preconditioner goes stale, the same restart with options or prototypes
+//! (`mpirun -n 2 cfrd run inputs/scenes/seed_fine_hyperbolic.yaml -o OUT -q --restart CK
+//! --stop-after-stage +1`, one run each, the fine run's construction stopped (`kill -STOP`)
+//! meanwhile; `summary.json`):
+//!
+//! | `fill_051` | GMRES iterations | linear solves | stage |
+//! |---|---|---|---|
+//! | lagged, 42e465a | 134 | 18.2 s | 26.8 s |
+//! | all built at every Jacobian (`-reduced_refresh_after 0`) | 87 | 19.0 s | 27.7 s |
+//! | the same, every 8 GMRES iterations | 89 | 16.2 s | 24.5 s |
+//! | the multigrid afresh at every Jacobian, the structure's factors lagged | 145 | 21.9 s | 30.8 s |
+//! | the structure afresh at every Jacobian, the multigrid lagged | 88 | 15.7 s | 23.4 s |
+//! | the same, SuperLU_DIST keeping its row permutation: this build | 88 | 14.2 s | 21.5 s |
+//! | rotations in the near-null space (`-reduced_near_null_modes 6`, levels smoothed by Chebyshev and Jacobi) | 164 | 20.1 s | 28.8 s |
+//!
+//! The Newton iterations were 10 in every run. The stale part is the structure: the
+//! interfaces' tangent follows their stress and the slab hangs on it. The six rigid-body
+//! modes with the default SOR smoothing fail at once (PC failed: zero pivots in SOR on the
+//! second level, whose rotations of one-node aggregates are empty columns). In
+//! `impound_1` (restarted after `slab_3`), the structure afresh at every Jacobian took 71
+//! GMRES iterations against 144 but 11 factorizations of 1.44 s each (`MatLUFactor` 15.8 s),
+//! 32.8 s of linear solves against 33.1 s; keeping SuperLU_DIST's row permutation
+//! (`SamePattern_SameRowPerm`) brought the factorizations to 10.2 s and the linear solves
+//! to 26.0 s (stage 39.0 s against 44.7 s; both runs with `-log_view`). Each of these is
+//! one run, and the assembly of the same Newton iterations moved by up to 20 % between them.
+//!
+//! **The medium scenes, side by side** (`/usr/bin/time -v mpirun -n 2 cfrd run
+//! inputs/scenes/seed_medium_<model>.yaml -o OUT -q --checkpoint none`, this build then
+//! 42e465a's, one after the other, the fine construction stopped meanwhile; one pair per
+//! scene, not alternated):
+//!
+//! | scene | build | wall time (`total_seconds`) | assembly / linear solves | Newton iterations | residual evaluations | steps | cut-backs | GMRES iterations | factorizations | peak memory per rank (`time`) |
+//! |---|---|---|---|---|---|---|---|---|---|---|
+//! | GP interface | 42e465a | 203.4 s | 106.8 / 98.7 s | 540 | 1,202 | 297 | 1 | 6,352 | 78 | 264 MiB |
+//! | GP interface | this | 188.5 s (0.927) | 95.6 / 91.1 s | 544 | 1,141 | 296 | 0 | 4,257 | 544 | 247 MiB |
+//! | GP interface | this, `-reduced_structure_refresh_after 8` | 192.5 s | 102.2 / 90.8 s | 544 | 1,193 | 297 | 0 | 4,865 | 320 | 249 MiB |
+//! | hyperbolic | this | 191.0 s (0.980) | 86.2 / 103.1 s | 512 | 1,033 | 296 | 0 | 4,149 | 512 | 252 MiB |
+//! | hyperbolic | 42e465a | 194.9 s | 88.7 / 102.7 s | 514 | 1,041 | 296 | 0 | 5,782 | 68 | 264 MiB |
+//!
+//! The hyperbolic pair shared the machine with a niced build of the tests (both runs alike;
+//! the same scene took 160.2 s alone with the build of cfad9f2, "Seed dam runs"): its
+//! linear solves are the same, a third fewer GMRES iterations paid for by the
+//! factorizations. The GP-interface scene gains 7 %, most of it in two stages: `slab_1`
+//! 9.0 s against 19.3 s (8 steps, 25 Newton and 122 GMRES iterations against 9 steps with
+//! the cut-back, 17 and 524) and `impound_3` 17.5 s against 23.6 s (25 Newton iterations
+//! against 31); `impound_4` took 17.4 s against 13.4 s with the same 20. It is still over
+//! the 3 min of acceptance 2.
+//!
 //! ## Side by side: the assembly writes into PETSc's storage
 //!
 //! Issue 20. Three changes of commits 70899c8 and 8e28a14, none of which moves a bit of the

@@ -39,10 +39,25 @@
 //! medium seed mesh's `impound_2` (runs below) 44 builds and 193 GMRES iterations took 10.6 s
 //! of linear solves, 11 builds and 345 iterations 7.8 s, some 0.15 s a build and 0.02 s an
 //! iteration. Within a stage (the solver is made afresh at
-//! every stage) the preconditioner of an earlier Jacobian is kept while the solves need at
-//! most 20 Krylov iterations (`-reduced_refresh_after N`; 0 builds it at every
+//! every stage) the multigrid of an earlier Jacobian is kept (the structure's factors:
+//! below) while the solves need at most 20 Krylov iterations (`-reduced_refresh_after N`; 0 builds it at every
 //! Jacobian), and built afresh at the Jacobian after a solve that needed more or whose
-//! preconditioner failed, or at once when the coupled nodes change. The run summary counts the builds as `factorizations`.
+//! preconditioner failed, or at once when the coupled nodes change.
+//!
+//! **What goes stale is the structure.** Between those builds the structure alone is
+//! factored afresh at every Jacobian whose last solve needed more than
+//! `-reduced_structure_refresh_after N` applications (default 0: every Jacobian), the fill's
+//! multigrid kept; SuperLU_DIST keeps the sparsity pattern's ordering and the row
+//! permutation of the stage's first factorization (`SamePattern_SameRowPerm`), since the
+//! interfaces change the values, not the pattern. The run summary counts every structure
+//! factorization as one of its `factorizations`. Why (the fine seed mesh's `fill_051` from the
+//! checkpoint after slab stage I, 2 ranks, one run each, alone on the machine; prototypes of
+//! this code selected by options; [`crate::performance`]): with the whole preconditioner
+//! lagged as above 134 GMRES iterations for 10 Newton iterations; built afresh at every
+//! Jacobian 87; the multigrid afresh on lagged structure factors 145; the structure afresh on
+//! the lagged multigrid 88, in 14.2 s of linear solves against 18.2 s. The hyperbolic
+//! interface's tangent follows its stress, and the slab hangs on it: a stale factor of that
+//! coupling costs GMRES iterations, a stale multigrid of the fill hardly any.
 //!
 //! **Inexact Newton.** With this solver the Newton corrections are solved only as tightly as
 //! Newton's own convergence needs (Eisenstat–Walker forcing terms, PETSc's `-snes_ksp_ew`;
@@ -120,7 +135,13 @@ pub struct ReducedAmg {
     /// Build the block's preconditioner afresh at the next Jacobian once a solve needed more
     /// applications than this (`-reduced_refresh_after`, [`REFRESH_AFTER`]).
     refresh_after: u32,
-    /// Preconditioners built (structure factored, multigrid set up) and not yet counted.
+    /// Factor the structure afresh (keeping the fill's multigrid) at the next Jacobian once a
+    /// solve needed more applications than this (`-reduced_structure_refresh_after`,
+    /// [`STRUCTURE_REFRESH_AFTER`]).
+    structure_refresh_after: u32,
+    /// The inner solver is a field split whose sub-solvers exist (set up once).
+    split_ready: bool,
+    /// Structure factorizations (with the multigrid set up or kept) not yet counted.
     builds: u64,
     /// The last build or application failed: the next Jacobian builds afresh.
     failed: bool,
@@ -129,6 +150,11 @@ pub struct ReducedAmg {
 /// The preconditioner of an earlier Jacobian of the stage is kept while the solves it serves
 /// need at most this many Krylov iterations (module docs, "Lagged").
 const REFRESH_AFTER: u32 = 20;
+
+/// The structure alone is factored afresh, the fill's multigrid kept, at every Jacobian whose
+/// last solve needed more than this many applications: the interfaces' tangent is what goes
+/// stale (module docs, "Lagged").
+const STRUCTURE_REFRESH_AFTER: u32 = 0;
 
 impl ReducedAmg {
     /// The shell's state on communicator `comm`; `symmetric` (CG outside) keeps GAMG's
@@ -158,6 +184,11 @@ impl ReducedAmg {
             &format!("-{PREFIX}fieldsplit_structure_pc_factor_mat_solver_type"),
             "superlu_dist",
         )?;
+        // the interfaces change the structure's values, not its pattern or pivots' order
+        default_option(
+            &format!("-{PREFIX}fieldsplit_structure_mat_superlu_dist_fact"),
+            "SamePattern_SameRowPerm",
+        )?;
         default_option(&format!("-{PREFIX}fieldsplit_fill_pc_type"), "gamg")?;
         Ok(Box::new(ReducedAmg {
             comm,
@@ -170,6 +201,12 @@ impl ReducedAmg {
             structure,
             applies: 0,
             refresh_after: int_option("-reduced_refresh_after", REFRESH_AFTER as i32)?.max(0) as u32,
+            structure_refresh_after: int_option(
+                "-reduced_structure_refresh_after",
+                STRUCTURE_REFRESH_AFTER as i32,
+            )?
+            .max(0) as u32,
+            split_ready: false,
             builds: 0,
             failed: false,
         }))
@@ -187,8 +224,9 @@ impl ReducedAmg {
 
     /// Finds the coupled nodes of the preconditioning matrix and, when they changed or the last
     /// solve needed more than `refresh_after` applications, extracts their block (a new one
-    /// with its near-null space when they changed) and builds its preconditioner; otherwise the
-    /// earlier one stays (module docs, "Lagged").
+    /// with its near-null space when they changed) and builds its preconditioner; when it
+    /// needed more than `structure_refresh_after`, factors the structure afresh and keeps the
+    /// fill's multigrid; otherwise the earlier one stays (module docs, "Lagged").
     fn setup(&mut self, pc: p::PC) -> Result<(), PetscError> {
         let (mut a, mut pmat): (p::Mat, p::Mat) = (null_mut(), null_mut());
         call!(PCGetOperators(pc, &mut a, &mut pmat))?;
@@ -199,11 +237,11 @@ impl ReducedAmg {
         call!(MatGetDiagonal(pmat, self.diag))?;
         let rows = self.coupled_nodes()?;
         let changed = self.any_rank(rows != self.rows)?;
-        let stale =
-            std::mem::take(&mut self.applies) > self.refresh_after || std::mem::take(&mut self.failed);
+        let applies = std::mem::take(&mut self.applies);
+        let stale = applies > self.refresh_after || std::mem::take(&mut self.failed);
         if changed || self.sub.is_null() {
             self.new_block(pmat, rows)?;
-        } else if stale {
+        } else if stale || (self.split_ready && applies > self.structure_refresh_after) {
             call!(MatCreateSubMatrix(
                 pmat,
                 self.is,
@@ -214,12 +252,16 @@ impl ReducedAmg {
         } else {
             return Ok(());
         }
-        self.build(pc)
+        self.build(pc, !(stale || changed || !self.split_ready))
     }
 
-    /// Builds the inner solver's preconditioner on the current block; a failure of the
-    /// multigrid or the factorization is `pc`'s.
-    fn build(&mut self, pc: p::PC) -> Result<(), PetscError> {
+    /// Builds the inner solver's preconditioner on the current block: the structure's factors
+    /// and, unless `keep_multigrid` (a split set up before), the fill's multigrid; a failure
+    /// of the multigrid or the factorization is `pc`'s.
+    fn build(&mut self, pc: p::PC, keep_multigrid: bool) -> Result<(), PetscError> {
+        if self.split_ready {
+            self.keep_fill_multigrid(keep_multigrid)?;
+        }
         self.builds += 1;
         call!(KSPSetOperators(self.ksp, self.sub, self.sub))?;
         call!(KSPSetUp(self.ksp))?;
@@ -231,10 +273,33 @@ impl ReducedAmg {
             self.failed = true;
             call!(PCSetFailedReason(pc, p::PC_SUBPC_ERROR))?;
         }
+        let mut kind: p::PCType = std::ptr::null();
+        call!(PCGetType(inner, &mut kind))?;
+        // SAFETY: PETSc's type name, a NUL-terminated static string.
+        self.split_ready = unsafe { std::ffi::CStr::from_ptr(kind) }.to_bytes()
+            == &p::PCFIELDSPLIT[..p::PCFIELDSPLIT.len() - 1];
         Ok(())
     }
 
-    /// Preconditioners built since the last call (each factors the structure).
+    /// Makes the fill's split keep (`keep`) or set up afresh its multigrid at its next set-up.
+    fn keep_fill_multigrid(&mut self, keep: bool) -> Result<(), PetscError> {
+        let mut inner: p::PC = null_mut();
+        call!(KSPGetPC(self.ksp, &mut inner))?;
+        let (mut n, mut subs): (i32, *mut p::KSP) = (0, null_mut());
+        call!(PCFieldSplitGetSubKSP(inner, &mut n, &mut subs))?;
+        let set = match n {
+            // SAFETY: the split's two sub-solvers, the fill's second (`set_splits`).
+            2 => call!(KSPSetReusePreconditioner(*subs.add(1), keep.into())),
+            _ => Ok(()),
+        };
+        let (line, empty) = (0, c"".as_ptr());
+        // SAFETY: the array PETSc allocated for the caller (PCFieldSplitGetSubKSP's contract).
+        let slot = &mut subs as *mut *mut p::KSP as *mut std::ffi::c_void;
+        let freed = unsafe { p::PetscFreeA(1, line, empty, empty, slot) };
+        set.and(chk(freed, "PetscFree"))
+    }
+
+    /// Structure factorizations since the last call (with or without a new multigrid).
     pub fn take_builds(&mut self) -> u64 {
         std::mem::take(&mut self.builds)
     }
@@ -321,6 +386,7 @@ impl ReducedAmg {
     fn new_inner_solver(&mut self, sub_ns: p::MatNullSpace) -> Result<(), PetscError> {
         // SAFETY: created here or null, destroyed once.
         unsafe { p::KSPDestroy(&mut self.ksp) };
+        self.split_ready = false;
         call!(KSPCreate(self.comm, &mut self.ksp))?;
         let prefix = CString::new(PREFIX).expect("no NUL");
         call!(KSPSetOptionsPrefix(self.ksp, prefix.as_ptr()))?;
