@@ -484,7 +484,7 @@
 //! |---|---|
 //! | `results.h5` | one parallel HDF5 file: the mesh and, for every output step (the end of every stage), `displacement`, `reaction`, `strain`, `stress` and the interface fields, every dataset in input order whatever the rank count; layout, units and signs are documented in the crate docs of `cfrd::io` (feature `native`) |
 //! | `results.xdmf` | the XDMF description of `results.h5`: open it in ParaView or VisIt (one time step per output step) |
-//! | `summary.json` | run summary: scene, ranks, nodes, elements, DOFs, wall time per phase and per stage (`stage_seconds`), Newton iterations, steps, cut-backs, `newton_per_step`, factorizations, KSP iterations, interface points open and slipping, peak memory per rank, checkpoint time, `restarted_after_stage` / `stopped_after_stage` |
+//! | `summary.json` | run summary: scene, ranks, nodes, elements, DOFs, wall time per phase and per stage (`stage_seconds`), Newton iterations, steps, cut-backs, `newton_per_step`, factorizations, multigrid builds, KSP iterations, interface points open and slipping, peak memory per rank, checkpoint time, `restarted_after_stage` / `stopped_after_stage` |
 //! | `checkpoint.h5` | the last checkpoint (staged scenes) |
 //! | `fig07_dam_displacement`, `fig08_slab_stress`, `fig09_slab_deflection`, `fig10_probe_NAME`, `fig11_interface` (`.csv` and `.png`) | the seed's Figs. 7–11 with `output.profiles`: dam displacement on the crest vertical, slab stresses and deflection at the central section at the end of construction and after impoundment, the stress path of each probe interface element, interface jumps and opening ([`crate::profiles`]) |
 //!

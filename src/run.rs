@@ -511,6 +511,7 @@ pub fn run_scene(
     summary.predictions_dropped = report.predictions_dropped as u64;
     summary.newton_per_step = report.newton_per_step.clone();
     summary.factorizations = report.factorizations;
+    summary.multigrid_builds = report.multigrid_builds;
     summary.interface_points = counts.points;
     summary.interface_open = counts.open;
     summary.interface_slipping = counts.slipping;

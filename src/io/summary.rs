@@ -234,10 +234,13 @@ pub struct RunSummary {
     /// Newton iterations of each completed step.
     #[serde(default)]
     pub newton_per_step: Vec<u32>,
-    /// Numeric factorizations of the canonical direct solver (`solver.linear_solver:
-    /// canonical_lu`).
+    /// Numeric factorizations of the direct solvers (`canonical_lu`, `distributed_lu`) or of
+    /// the reduced multigrid's structure (`reduced_amg`).
     #[serde(default)]
     pub factorizations: u64,
+    /// Set-ups of the reduced multigrid's multigrid (`reduced_amg`), kept across Jacobians.
+    #[serde(default)]
+    pub multigrid_builds: u64,
     /// Interface and joint points of placed elements at the end of the run.
     #[serde(default)]
     pub interface_points: u64,
@@ -419,6 +422,7 @@ mod tests {
             predictions_dropped: 1,
             newton_per_step: vec![2, 2, 2],
             factorizations: 5,
+            multigrid_builds: 2,
             interface_points: 16,
             interface_open: 2,
             interface_slipping: 3,

@@ -1001,6 +1001,8 @@ pub struct Snes {
     reduced_amg: Option<Box<ReducedAmg>>,
     /// Factorizations of canonical solvers already dropped, not yet taken.
     factorizations: u64,
+    /// Multigrid set-ups of reduced multigrids already dropped, not yet taken.
+    multigrid_builds: u64,
     /// The direct solvers are set for the Jacobians of a dynamic stage ([`Snes::set_time_stepping`]).
     time_stepping: bool,
     /// How a Newton correction is scaled ([`Snes::set_line_search`]).
@@ -1082,6 +1084,7 @@ impl Snes {
             distributed_lu: None,
             reduced_amg: None,
             factorizations: 0,
+            multigrid_builds: 0,
             time_stepping: false,
             line_search: LineSearch::Secant,
         };
@@ -1117,6 +1120,7 @@ impl Snes {
         self.raw = raw;
         // the old shell context goes only now that no PC refers to it
         self.factorizations = self.take_factorizations();
+        self.multigrid_builds = self.take_multigrid_builds();
         self.canonical_lu = None;
         self.distributed_lu = None;
         self.reduced_amg = None;
@@ -1180,8 +1184,17 @@ impl Snes {
         call!(SNESSetFromOptions(s.raw))
     }
 
+    /// Set-ups of the reduced multigrid's multigrid since the last call (0 with other solvers).
+    pub fn take_multigrid_builds(&mut self) -> u64 {
+        let reduced = self
+            .reduced_amg
+            .as_mut()
+            .map_or(0, |amg| amg.take_multigrid_builds());
+        std::mem::take(&mut self.multigrid_builds) + reduced
+    }
+
     /// Numeric factorizations of the direct solvers since the last call (0 with the Krylov
-    /// defaults).
+    /// defaults; the reduced multigrid's: of its structure).
     pub fn take_factorizations(&mut self) -> u64 {
         let canonical = self
             .canonical_lu

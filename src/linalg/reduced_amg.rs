@@ -143,6 +143,8 @@ pub struct ReducedAmg {
     split_ready: bool,
     /// Structure factorizations (with the multigrid set up or kept) not yet counted.
     builds: u64,
+    /// Set-ups of the fill's multigrid (or of the unsplit block's) not yet counted.
+    multigrid_builds: u64,
     /// The last build or application failed: the next Jacobian builds afresh.
     failed: bool,
 }
@@ -208,6 +210,7 @@ impl ReducedAmg {
             .max(0) as u32,
             split_ready: false,
             builds: 0,
+            multigrid_builds: 0,
             failed: false,
         }))
     }
@@ -263,6 +266,7 @@ impl ReducedAmg {
             self.keep_fill_multigrid(keep_multigrid)?;
         }
         self.builds += 1;
+        self.multigrid_builds += u64::from(!keep_multigrid);
         call!(KSPSetOperators(self.ksp, self.sub, self.sub))?;
         call!(KSPSetUp(self.ksp))?;
         let mut inner: p::PC = null_mut();
@@ -302,6 +306,11 @@ impl ReducedAmg {
     /// Structure factorizations since the last call (with or without a new multigrid).
     pub fn take_builds(&mut self) -> u64 {
         std::mem::take(&mut self.builds)
+    }
+
+    /// Set-ups of the multigrid since the last call.
+    pub fn take_multigrid_builds(&mut self) -> u64 {
+        std::mem::take(&mut self.multigrid_builds)
     }
 
     /// The owned rows of every node with a coupled DOF (all three of its DOFs), increasing.

@@ -74,6 +74,7 @@ pub(super) fn solve(
     };
     let solved = snes.solve(&mut step, &mut r, &mut x);
     step.report.factorizations += snes.take_factorizations();
+    step.report.multigrid_builds += snes.take_multigrid_builds();
     step.report.solve_seconds += (t0.elapsed().as_secs_f64() - step.assembly_seconds).max(0.0);
     let (outcome, iterations) = solved?;
     step.conclude(outcome, iterations, &x)

@@ -31,10 +31,12 @@ pub struct SolveReport {
     /// started from the last converged state; [`crate::solver::Problem::solve_step`]).
     #[serde(default)]
     pub predictions_dropped: u32,
-    /// Numeric factorizations of the direct solvers (the reduced multigrid: preconditioners
-    /// built, each factoring the structure).
+    /// Numeric factorizations of the direct solvers (the reduced multigrid: of its structure).
     #[serde(default)]
     pub factorizations: u64,
+    /// Set-ups of the reduced multigrid's multigrid ([`crate::linalg::reduced_amg`], "Lagged").
+    #[serde(default)]
+    pub multigrid_builds: u64,
     /// Wall-clock seconds of each completed stage, for the run summary.
     #[serde(default)]
     pub stage_seconds: Vec<crate::io::summary::StageSeconds>,
