@@ -407,8 +407,9 @@ fn write_gp_dam_variants(dir: &Path, variants: &[(&str, &str, f64)]) {
 /// canonical LU's by no more than the Newton tolerance itself moves them (a 10 times tighter
 /// tolerance gives that measure), although its corrections are solved only to Eisenstat–Walker
 /// forcing terms and its multigrid is kept across Jacobians: it is set up fewer times than
-/// there are Newton iterations, while the structure is factored afresh at every Jacobian that
-/// follows a solve (at least once a stage, at most once an iteration). Where GAMG on the whole matrix fails, the medium seed mesh, is
+/// there are Newton iterations, while the structure is factored afresh at every Jacobian (as
+/// many times as there are Jacobians, failed steps' included: at least once a Newton
+/// iteration). Where GAMG on the whole matrix fails, the medium seed mesh, is
 /// measured in `cfrd::performance` (too long for a test).
 #[test]
 fn multigrid_on_the_coupled_rows_carries_the_staged_dam() {
@@ -442,10 +443,7 @@ fn multigrid_on_the_coupled_rows_carries_the_staged_dam() {
         let factors = summary_count(&d.join(out), "factorizations");
         println!("multigrid set-ups: {out} {builds}, structure factorizations {factors}");
         assert!(builds > 0 && builds < newton(out), "{out}: {builds} builds");
-        assert!(
-            factors >= builds && factors <= newton(out),
-            "{out}: {factors} factorizations"
-        );
+        assert!(factors >= newton(out), "{out}: {factors} factorizations");
     }
     let tolerance = displacement_difference(d, "tight", "lu");
     for out in ["amg", "amg_1"] {

@@ -49,8 +49,8 @@
 //! `-reduced_structure_refresh_after N` applications (default 0: every Jacobian), the fill's
 //! multigrid kept; SuperLU_DIST keeps the sparsity pattern's ordering and the row
 //! permutation of the stage's first factorization (`SamePattern_SameRowPerm`), since the
-//! interfaces change the values, not the pattern. The run summary counts every structure
-//! factorization as one of its `factorizations`. Why (the fine seed mesh's `fill_051` from the
+//! interfaces change the values, not the pattern. The run summary counts the structure's
+//! factorizations as `factorizations` and the multigrid's set-ups as `multigrid_builds`. Why (the fine seed mesh's `fill_051` from the
 //! checkpoint after slab stage I, 2 ranks, one run each, alone on the machine; prototypes of
 //! this code selected by options; [`crate::performance`]): with the whole preconditioner
 //! lagged as above 134 GMRES iterations for 10 Newton iterations; built afresh at every
