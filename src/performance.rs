@@ -14,6 +14,7 @@
 //! [checkpoints](#checkpoints) · [solver benchmark](#solver-benchmark) ·
 //! [weak scaling](#weak-scaling-one-stage-on-1-and-2-ranks) ·
 //! [material updates](#material-updates) · [side by side](#side-by-side-element-geometry-built-once) ·
+//! [the structure factored at every Jacobian](#side-by-side-the-structure-factored-afresh-at-every-jacobian) ·
 //! [accuracy against cost](#accuracy-against-cost)
 //!
 //! ## The main job
@@ -113,7 +114,10 @@
 //! settling onto its interface) and does not converge in 15 iterations (the other Newton
 //! failure of dc7a8a1's run, in `impound_3`, is gone). Against the hyperbolic scene's 160.2 s
 //! (build of cfad9f2, above: 514 Newton iterations, 74.1 s of assembly) the GP interface's own
-//! integration is most of what is left: 105.5 s of assembly for 540 iterations.
+//! integration is most of what is left: 105.5 s of assembly for 540 iterations. With the
+//! structure factored afresh at every Jacobian the same scene took 188.5 s against 203.4 s,
+//! without that cut-back
+//! ([side by side](#side-by-side-the-structure-factored-afresh-at-every-jacobian)).
 //!
 //! ## The fine run
 //!

@@ -38,11 +38,11 @@
 //! structure, setting the multigrid up) costs as much as several GMRES iterations: on the
 //! medium seed mesh's `impound_2` (runs below) 44 builds and 193 GMRES iterations took 10.6 s
 //! of linear solves, 11 builds and 345 iterations 7.8 s, some 0.15 s a build and 0.02 s an
-//! iteration. Within a stage (the solver is made afresh at
-//! every stage) the multigrid of an earlier Jacobian is kept (the structure's factors:
-//! below) while the solves need at most 20 Krylov iterations (`-reduced_refresh_after N`; 0 builds it at every
-//! Jacobian), and built afresh at the Jacobian after a solve that needed more or whose
-//! preconditioner failed, or at once when the coupled nodes change.
+//! iteration. Within a stage (the solver is made afresh at every stage) the multigrid of an
+//! earlier Jacobian is kept (the structure's factors: below) while the solves need at most
+//! 20 Krylov iterations (`-reduced_refresh_after N`; 0 builds it at every Jacobian), and
+//! built afresh at the Jacobian after a solve that needed more or whose preconditioner
+//! failed, or at once when the coupled nodes change.
 //!
 //! **What goes stale is the structure.** Between those builds the structure alone is
 //! factored afresh at every Jacobian whose last solve needed more than
@@ -50,14 +50,15 @@
 //! multigrid kept; SuperLU_DIST keeps the sparsity pattern's ordering and the row
 //! permutation of the stage's first factorization (`SamePattern_SameRowPerm`), since the
 //! interfaces change the values, not the pattern. The run summary counts the structure's
-//! factorizations as `factorizations` and the multigrid's set-ups as `multigrid_builds`. Why (the fine seed mesh's `fill_051` from the
-//! checkpoint after slab stage I, 2 ranks, one run each, alone on the machine; prototypes of
-//! this code selected by options; [`crate::performance`]): with the whole preconditioner
-//! lagged as above 134 GMRES iterations for 10 Newton iterations; built afresh at every
-//! Jacobian 87; the multigrid afresh on lagged structure factors 145; the structure afresh on
-//! the lagged multigrid 88, in 14.2 s of linear solves against 18.2 s. The hyperbolic
-//! interface's tangent follows its stress, and the slab hangs on it: a stale factor of that
-//! coupling costs GMRES iterations, a stale multigrid of the fill hardly any.
+//! factorizations as `factorizations` and the multigrid's set-ups as `multigrid_builds`.
+//! Why (the fine seed mesh's `fill_051` from the checkpoint after slab stage I, 2 ranks, one
+//! run each, the machine otherwise idle; prototypes of this code selected by options;
+//! [`crate::performance`]): with the whole preconditioner lagged as above 134 GMRES
+//! iterations for 10 Newton iterations; built afresh at every Jacobian 87; the multigrid
+//! afresh on lagged structure factors 145; the structure afresh on the lagged multigrid 88,
+//! in 14.2 s of linear solves against 18.2 s. The hyperbolic interface's tangent follows its
+//! stress, and the slab hangs on it: a stale factor of that coupling costs GMRES iterations,
+//! a stale multigrid of the fill hardly any.
 //!
 //! **Inexact Newton.** With this solver the Newton corrections are solved only as tightly as
 //! Newton's own convergence needs (Eisenstat–Walker forcing terms, PETSc's `-snes_ksp_ew`;
