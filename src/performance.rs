@@ -1276,6 +1276,15 @@
 //! to 26.0 s (stage 39.0 s against 44.7 s; both runs with `-log_view`). Each of these is
 //! one run, and the assembly of the same Newton iterations moved by up to 20 % between them.
 //!
+//! **The two fine stages, side by side**: the same restarts with the builds of 42e465a and of
+//! c991192 (this change), alternated, two pairs per stage, the fine construction stopped
+//! meanwhile (`summary.json`; stage time, linear solves):
+//!
+//! | stage | 42e465a | c991192 | ratio (means) | GMRES iterations | Newton iterations |
+//! |---|---|---|---|---|---|
+//! | `fill_051` | 24.5, 23.6 s (solves 16.3, 16.2 s) | 23.4, 21.6 s (15.6, 14.2 s) | 0.936 (solves 0.917) | 134 → 88 | 10 → 10 |
+//! | `impound_1` | 48.4, 49.0 s (35.5, 35.7 s) | 38.0, 40.0 s (25.5, 26.6 s) | 0.801 (solves 0.732) | 144 → 71 | 10 → 11 |
+//!
 //! **The medium scenes, side by side** (`/usr/bin/time -v mpirun -n 2 cfrd run
 //! inputs/scenes/seed_medium_<model>.yaml -o OUT -q --checkpoint none`, this build then
 //! 42e465a's, one after the other, the fine construction stopped meanwhile; one pair per
