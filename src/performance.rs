@@ -1262,7 +1262,7 @@
 //! | the same, every 8 GMRES iterations | 89 | 16.2 s | 24.5 s |
 //! | the multigrid afresh at every Jacobian, the structure's factors lagged | 145 | 21.9 s | 30.8 s |
 //! | the structure afresh at every Jacobian, the multigrid lagged | 88 | 15.7 s | 23.4 s |
-//! | the same, SuperLU_DIST keeping its row permutation: this build | 88 | 14.2 s | 21.5 s |
+//! | the same, SuperLU_DIST keeping its row permutation (the prototype with the defaults of c991192) | 88 | 14.2 s | 21.5 s |
 //! | rotations in the near-null space (`-reduced_near_null_modes 6`, levels smoothed by Chebyshev and Jacobi) | 164 | 20.1 s | 28.8 s |
 //!
 //! The Newton iterations were 10 in every run. The stale part is the structure: the
