@@ -60,6 +60,18 @@
 //! stress, and the slab hangs on it: a stale factor of that coupling costs GMRES iterations,
 //! a stale multigrid of the fill hardly any.
 //!
+//! **Zero pivots.** SuperLU_DIST pivots statically (the row order chosen before the
+//! numbers are known), so a structure block that a state leaves singular, or nearly so,
+//! meets a zero pivot. This happened on the medium GP-interface seed scene with looser
+//! forcing terms (`-snes_ksp_ew_rtolmax 0.05`): a predicted start of `slab_3` with internal
+//! forces of 3.8e26 N (now rejected, [`crate::solver::Problem::solve_step`]) gave
+//! `U(i,i) is exactly zero`, and every cut-back after it failed the same way (PC failed,
+//! PETSc reason −11) until the run stopped. Pivots below √ε·‖A‖ are therefore replaced by
+//! that value (`-mat_superlu_dist_replacetinypivot`): the factors stay a preconditioner, and
+//! GMRES on the true Jacobian makes up the difference. Where no pivot is that small (every
+//! seed run measured: `-reduced_fieldsplit_structure_mat_superlu_dist_statprint` counts
+//! them) nothing changes, bit for bit.
+//!
 //! **Inexact Newton.** With this solver the Newton corrections are solved only as tightly as
 //! Newton's own convergence needs (Eisenstat–Walker forcing terms, PETSc's `-snes_ksp_ew`;
 //! the scene's `rtol` is then not used): to a relative 0.01, or more tightly where PETSc's
@@ -191,6 +203,11 @@ impl ReducedAmg {
         default_option(
             &format!("-{PREFIX}fieldsplit_structure_mat_superlu_dist_fact"),
             "SamePattern_SameRowPerm",
+        )?;
+        // a state that leaves the structure singular (module docs, "Zero pivots")
+        default_option(
+            &format!("-{PREFIX}fieldsplit_structure_mat_superlu_dist_replacetinypivot"),
+            "true",
         )?;
         default_option(&format!("-{PREFIX}fieldsplit_fill_pc_type"), "gamg")?;
         Ok(Box::new(ReducedAmg {

@@ -33,7 +33,18 @@ pub(super) struct StepTarget {
     pub rows: Vec<i32>,
     /// The step's end, "λ = …" or "t = … s" (printed by the monitor).
     pub at: String,
+    /// Whether the initial guess is the integrator's prediction (then checked against
+    /// [`PREDICTION_REJECTED_AT`]).
+    pub predicted: bool,
 }
+
+/// A predicted start whose relative residual (‖F‖ / max(‖f_ext‖, ‖f_int‖, ‖g‖)) reaches this
+/// is no prediction: its internal forces are out of all proportion to the loads (the
+/// extrapolation overshot a material's stiffening, e.g. a GP interface closing, and
+/// ‖f_int‖ reached 3.8e26 N on the medium seed mesh), and Newton cannot bring them back. The
+/// step starts again from the last converged state ([`SolveError::AtStart`]); a start from
+/// there has a residual of at most the step's load increment.
+pub const PREDICTION_REJECTED_AT: f64 = 0.5;
 
 /// Solves one step to equilibrium from the initial guess `x` (the committed state or the
 /// integrator's prediction; Newton on SNES with `snes`) and commits the states on
@@ -240,8 +251,26 @@ impl NewtonStep<'_, '_> {
             .max(g_norm)
             .max(1e-300);
         self.residual_norm = norm(f)?;
+        if self.evaluations == 1 && self.target.predicted && !self.plausible_start() {
+            return Ok(false);
+        }
         self.residual_at = Some(xs);
         Ok(true)
+    }
+
+    /// Whether the relative residual at a predicted start stays below
+    /// [`PREDICTION_REJECTED_AT`] (the same decision on every rank: exact norms); if not,
+    /// the start counts as failed, with the reason.
+    fn plausible_start(&mut self) -> bool {
+        let rel = self.relative_residual();
+        if rel < PREDICTION_REJECTED_AT {
+            return true;
+        }
+        self.failure = Some(format!(
+            "the relative residual there is {rel:.3e} (at most {PREDICTION_REJECTED_AT} is taken)"
+        ));
+        self.start_failed = true;
+        false
     }
 }
 

@@ -201,7 +201,8 @@ impl<'a> Problem<'a> {
     /// Newton on SNES for the step at load factor `lambda` ([`newton`]) from the integrator's
     /// predicted start; `at` names the step's end for the monitor. A predicted start that a
     /// material update cannot take (a GP interface closed beyond its void-ratio bound,
-    /// [`crate::material::interface_gp`], or too many substeps) is dropped, and Newton starts
+    /// [`crate::material::interface_gp`], or too many substeps), or whose residual is of the
+    /// order of the forces themselves ([`newton::PREDICTION_REJECTED_AT`]), is dropped, and Newton starts
     /// again from the last converged state before the step is cut back
     /// ([`SolveReport::predictions_dropped`]). Whether the guess moved is one comparison and
     /// one reduction per step, none per iteration.
@@ -210,7 +211,7 @@ impl<'a> Problem<'a> {
         self.integrator.predict(&mut guess)?;
         let moved = guess.read(|g| self.model.u_committed.read(|u| g != u))??;
         let predicted = crate::parallel::any_true(self.comm, moved);
-        match self.newton_from(lambda, at.clone(), guess, report) {
+        match self.newton_from(lambda, at.clone(), (guess, predicted), report) {
             Err(SolveError::AtStart(m)) if predicted => {
                 self.model.revert()?;
                 report.predictions_dropped += 1;
@@ -218,7 +219,7 @@ impl<'a> Problem<'a> {
                     eprintln!("predicted start of the step to {at} dropped: {m}");
                 }
                 let guess = self.committed_copy()?;
-                self.newton_from(lambda, at, guess, report)
+                self.newton_from(lambda, at, (guess, false), report)
             }
             r => r,
         }
@@ -231,12 +232,13 @@ impl<'a> Problem<'a> {
         Ok(u)
     }
 
-    /// Newton on SNES for the step at load factor `lambda` from the initial guess `guess`.
+    /// Newton on SNES for the step at load factor `lambda` from the initial guess `guess`,
+    /// `predicted` when it is the integrator's prediction.
     fn newton_from(
         &mut self,
         lambda: f64,
         at: String,
-        guess: Vector,
+        (guess, predicted): (Vector, bool),
         report: &mut SolveReport,
     ) -> Result<(), SolveError> {
         let mut f_ext = self.model.u.duplicate()?;
@@ -249,6 +251,7 @@ impl<'a> Problem<'a> {
             targets: self.constraints.targets(self.model.disc.dof_lo, lambda),
             rows: self.constraints.rows(),
             at,
+            predicted,
         };
         let mut snes = self
             .snes
