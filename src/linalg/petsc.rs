@@ -931,11 +931,11 @@ fn configure_ksp(ksp: p::KSP, rtol: f64, max_it: u32, symmetric: bool) -> Result
 }
 
 /// The reduced multigrid's inexact-Newton defaults (`cfrd::linalg::reduced_amg`, "Inexact
-/// Newton"): PETSc's Eisenstat–Walker forcing terms, none looser than 0.05.
+/// Newton"): PETSc's Eisenstat–Walker forcing terms, none looser than 0.03.
 const EISENSTAT_WALKER: [(&str, &str); 3] = [
     ("-snes_ksp_ew", "true"),
-    ("-snes_ksp_ew_rtol0", "0.05"),
-    ("-snes_ksp_ew_rtolmax", "0.05"),
+    ("-snes_ksp_ew_rtol0", "0.03"),
+    ("-snes_ksp_ew_rtolmax", "0.03"),
 ];
 
 /// What a nonlinear problem gives PETSc's SNES: the residual F(x), the Jacobian J(x) and the
@@ -1147,7 +1147,7 @@ impl Snes {
         if let LinearMethod::ReducedAmg { structure } = &self.method {
             self.reduced_amg = Some(ReducedAmg::new(self.comm, symmetric, structure.clone())?);
             // inexact Newton (Eisenstat–Walker, reduced_amg module docs): a correction is
-            // solved to 0.05, or as much more tightly as Newton converges fast
+            // solved to 0.03, or as much more tightly as Newton converges fast
             for (name, value) in EISENSTAT_WALKER {
                 default_option(name, value)?;
             }
