@@ -317,6 +317,16 @@ fn joint_opens_under_tension_with_the_tension_stiffness() {
     assert_eq!(o.status.code(), Some(1), "{}", text(&o));
 }
 
+/// The upper block pressed onto a GP interface by `pressure` (Pa) in 8 load steps, with the
+/// solver keys `solver_keys` added.
+fn gp_pressed_scene(pressure: f64, solver_keys: &str) -> String {
+    let loads = format!("{{ pressure: [ {{ faces: top, value: {pressure:e} }} ] }}");
+    scene("{ model: gp_interface }", "", &loads, 8).replace(
+        "newton_max_iterations: 40 }",
+        &format!("newton_max_iterations: 40, {solver_keys} }}"),
+    )
+}
+
 /// The extrapolating predictor against the GP interface's void-ratio bound (issue 20): the
 /// upper block pressed onto the interface by 2 MPa in 8 load steps. The closure stiffens
 /// towards its bound (δ_max = 8 mm), so the second step's extrapolated start closes the
@@ -326,11 +336,7 @@ fn joint_opens_under_tension_with_the_tension_stiffness() {
 #[test]
 fn a_predicted_start_beyond_the_gp_interface_bound_is_dropped_not_cut_back() {
     let dir = tempdir();
-    let loads = "{ pressure: [ { faces: top, value: 2.0e6 } ] }";
-    let yaml = scene("{ model: gp_interface }", "", loads, 8).replace(
-        "newton_max_iterations: 40 }",
-        "newton_max_iterations: 40, predictor: extrapolate }",
-    );
+    let yaml = gp_pressed_scene(2.0e6, "predictor: extrapolate");
     let mut closure = Vec::new();
     for np in [1, 2] {
         let o = run(dir.path(), np, "press", &yaml).unwrap_or_else(|e| panic!("np {np}: {e}"));
@@ -365,11 +371,7 @@ fn a_predicted_start_beyond_the_gp_interface_bound_is_dropped_not_cut_back() {
 #[test]
 fn a_predicted_start_with_a_residual_of_the_order_of_the_forces_is_dropped() {
     let dir = tempdir();
-    let loads = "{ pressure: [ { faces: top, value: 1.9e6 } ] }";
-    let yaml = scene("{ model: gp_interface }", "", loads, 8).replace(
-        "newton_max_iterations: 40 }",
-        "newton_max_iterations: 40, predictor: extrapolate, monitor: true }",
-    );
+    let yaml = gp_pressed_scene(1.9e6, "predictor: extrapolate, monitor: true");
     std::fs::write(dir.path().join("blocks.msh"), two_blocks_msh()).unwrap();
     std::fs::write(dir.path().join("press.yaml"), &yaml).unwrap();
     let mut closure = Vec::new();
