@@ -73,7 +73,7 @@
 //! | `boundary` | `{ set, fix: [x, y, z], value }` on node sets (prescribed displacement, zero by default) |
 //! | `loads` | `gravity: { g }`, `pressure: [ { faces, value } ]`, `hydrostatic: [ { faces, level, unit_weight } ]` (γ_w 9810 N/m³ by default) |
 //! | `stages` | construction and loading stages in order: `{ name, activate: [blocks], loads, load_steps }`, plus `dynamic` ([dynamic stages](#dynamic-stages-and-earthquakes)) and `modal` ([modal analysis](#modal-analysis)); placed blocks start strain-free at zero stress. Without stages the scene is one stage (a `mesh.cfrd` scene runs the generator's schedule) |
-//! | `solver` | [`SolverSpec`](crate::scene::schema::SolverSpec): `rtol` (1e-10), `max_iterations` (2000), `newton_tol` (1e-8), `newton_max_iterations` (25), `load_steps` (1), `max_cutbacks` (8), `petsc_options`, `monitor`, `linear_solver` (`iterative`, `reduced_amg`, `canonical_lu` or `distributed_lu`), `reuse_factorization` (true), `integration_tol_ratio` (0, off), `predictor` (`none`, or `extrapolate`: a static load step starts from the last step's rate du/dλ, [`crate::solver::integrator::QuasiStatic`]), `line_search` (`residual_secant`, `secant` or `full_step_first`, [`LineSearch`](crate::scene::schema::LineSearch)) |
+//! | `solver` | [`SolverSpec`](crate::scene::schema::SolverSpec): `rtol` (1e-10), `max_iterations` (2000), `newton_tol` (1e-8), `newton_max_iterations` (25), `load_steps` (1), `step_growth` (1: equal steps), `max_cutbacks` (8), `petsc_options`, `monitor`, `linear_solver` (`iterative`, `reduced_amg`, `canonical_lu` or `distributed_lu`), `reuse_factorization` (true), `integration_tol_ratio` (0, off), `predictor` (`none`, or `extrapolate`: a static load step starts from the last step's rate du/dλ, [`crate::solver::integrator::QuasiStatic`]), `line_search` (`residual_secant`, `secant` or `full_step_first`, [`LineSearch`](crate::scene::schema::LineSearch)) |
 //! | `output` | [`OutputSpec`](crate::scene::schema::OutputSpec): `dir` (`out`; `-o` overrides it), `placed_nodes` (`end_of_stage` or `start_of_stage`: where the displacement of a placed node counts from), `profiles` (the seed's Figs. 7–11, [`crate::profiles`], and after an earthquake Figs. 12–20, [`crate::quake_figures`]; `probes` name the elements followed), `checkpoint` (`stage`, `step` or `none`) |
 //!
 //! ### A seed scene
@@ -156,7 +156,10 @@
 //!   whose Newton iteration or material update fails is halved, at most `solver.max_cutbacks`
 //!   times in a row, and grown back after two successes; the run summary counts cut-backs and
 //!   Newton iterations per step (`newton_per_step`). With GP rockfill, steps too large cost
-//!   more than they save (measurements in [`crate::performance`]). With `solver.predictor:
+//!   more than they save (measurements in [`crate::performance`]). `solver.step_growth: G`
+//!   lets a static step that converged in one Newton iteration double the next one, up to G
+//!   times the nominal step; a step of more than three iterations halves it back to the
+//!   nominal one (the fine seed scenes take G = 2, [`crate::solver::step_control`]). With `solver.predictor:
 //!   extrapolate` a step whose extrapolated start fails in a material update (a GP interface
 //!   closed beyond its bound) first starts again from the last converged state
 //!   (`predictions_dropped` in the summary), and is halved only if that fails too.

@@ -301,8 +301,12 @@ pub fn run_scene(
     for (k, stage) in scene.stages.iter().enumerate().skip(first_stage) {
         let stage_start = Instant::now();
         let counts_at_start = stage_counts(&report);
+        let growth = match stage.step_growth {
+            1 => String::new(),
+            g => format!(", easy ones growing up to {g} times"),
+        };
         say(&format!(
-            "stage {}/{n_stages} '{}': {} load step(s)",
+            "stage {}/{n_stages} '{}': {} load step(s){growth}",
             k + 1,
             stage.name,
             stage.load_steps
@@ -328,7 +332,7 @@ pub fn run_scene(
                         modes.seconds
                     ));
                 }
-                StepControl::new(stage.t_end(), stage.load_steps)
+                StepControl::growing(stage.t_end(), stage.load_steps, stage.step_growth)
             }
         };
         let mut steps_in_stage = 0u32;

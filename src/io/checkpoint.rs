@@ -457,6 +457,7 @@ pub fn read(
                         path[2] as u32,
                         stage.t_end(),
                         stage.load_steps,
+                        stage.step_growth,
                     ),
                     u_stage_start: sized("u_stage_start", start, 3 * nn)?,
                     node_was_active: was.iter().map(|&f| f != 0).collect(),

@@ -7,6 +7,8 @@ use super::schema::{LoadsSpec, SceneFile, SolverSpec};
 
 /// Most load steps of a stage (`solver.load_steps`, `stages[k].load_steps`).
 pub const MAX_LOAD_STEPS: u32 = 1_000_000;
+/// Largest growth of a static load step over its nominal size (`solver.step_growth`).
+pub const MAX_STEP_GROWTH: u32 = 64;
 /// Most consecutive cut-backs (`solver.max_cutbacks`): beyond some 50 halvings a load step is
 /// below the resolution of a double.
 pub const MAX_CUTBACKS: u32 = 60;
@@ -105,6 +107,15 @@ pub fn check_stages_and_counts(f: &SceneFile, inv: Inv) -> Result<(), SceneError
 /// Checks the solver's iteration, step and cut-back counts.
 fn check_solver_counts(s: &SolverSpec, inv: Inv) -> Result<(), SceneError> {
     check_load_steps(s.load_steps, "solver.load_steps", inv)?;
+    if !(1..=MAX_STEP_GROWTH).contains(&s.step_growth) {
+        return Err(inv(
+            "solver.step_growth",
+            format!(
+                "{} must lie in [1, {MAX_STEP_GROWTH}] (1: equal load steps)",
+                s.step_growth
+            ),
+        ));
+    }
     if s.max_cutbacks > MAX_CUTBACKS {
         return Err(inv(
             "solver.max_cutbacks",

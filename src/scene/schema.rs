@@ -277,6 +277,12 @@ pub struct SolverSpec {
     /// Consecutive cut-backs (halving the load step) allowed before a step is declared failed.
     #[serde(default = "max_cutbacks")]
     pub max_cutbacks: u32,
+    /// Growth of a static stage's load steps: a step converged in one Newton iteration doubles
+    /// the next one, up to this many times the nominal step, and a step of more than three
+    /// halves it back to the nominal one ([`crate::solver::step_control`]). Default 1 (equal
+    /// steps); at most [`crate::scene::ranges::MAX_STEP_GROWTH`].
+    #[serde(default = "one")]
+    pub step_growth: u32,
     /// PETSc options, e.g. `-ksp_type gmres -pc_type hypre`; command-line options override them.
     #[serde(default)]
     pub petsc_options: String,
@@ -436,6 +442,7 @@ impl Default for SolverSpec {
             newton_max_iterations: newton_max(),
             load_steps: 1,
             max_cutbacks: max_cutbacks(),
+            step_growth: 1,
             petsc_options: String::new(),
             monitor: false,
             linear_solver: LinearSolver::Iterative,

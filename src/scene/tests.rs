@@ -179,6 +179,33 @@ fn fill_load_steps_apply_to_the_fill_stages_only() {
     assert!(err.contains("mesh.cfrd.fill_load_steps"), "{err}");
 }
 
+#[test]
+fn step_growth_applies_to_the_static_stages_only() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/inputs/scenes/seed_coarse_mohr_coulomb_quake.yaml"
+    );
+    let text = std::fs::read_to_string(path).expect("seed quake scene");
+    let with = |growth: &str| {
+        let t = text.replace(
+            "load_steps: 8,",
+            &format!("load_steps: 8, step_growth: {growth},"),
+        );
+        assert_ne!(t, text, "the quake scene's solver line changed");
+        Scene::from_str(&t, "t.yaml", Path::new(path).parent().expect("scenes directory"))
+    };
+    let scene = with("4").expect("valid scene");
+    assert!(scene.stages.iter().any(|st| st.dynamic.is_some()));
+    for st in &scene.stages {
+        let expected = if st.dynamic.is_some() { 1 } else { 4 };
+        assert_eq!(st.step_growth, expected, "{}", st.name);
+    }
+    for bad in ["0", "65"] {
+        let err = message(with(bad));
+        assert!(err.contains("solver.step_growth"), "{bad}: {err}");
+    }
+}
+
 /// A box of three layers of GP rockfill (own STOL `stol`) with the solver section `solver`.
 fn gp_box_scene(stol: &str, solver: &str) -> Result<Scene, SceneError> {
     let text = format!(

@@ -216,6 +216,7 @@ impl Scene {
                 activate: (0..mesh.blocks.len() as u32).collect(),
                 terms: resolve_loads(&file.loads, None, &mesh, "loads", &inv)?,
                 load_steps: file.solver.load_steps,
+                step_growth: file.solver.step_growth,
                 dynamic: None,
                 modal: None,
             });
@@ -247,9 +248,12 @@ impl Scene {
                     Some(d) => Some(dynamic::resolve(d, base, &format!("stages[{k}].dynamic"), &inv)?),
                     None => None,
                 };
-                let load_steps = match &dynamic {
-                    Some(d) => d.steps,
-                    None => st.load_steps.unwrap_or(file.solver.load_steps),
+                let (load_steps, step_growth) = match &dynamic {
+                    Some(d) => (d.steps, 1),
+                    None => (
+                        st.load_steps.unwrap_or(file.solver.load_steps),
+                        file.solver.step_growth,
+                    ),
                 };
                 let stage_path = format!("stages[{k}]");
                 let modal = modal::resolve(st.modal.as_ref(), dynamic.as_ref(), &stage_path, &inv)?;
@@ -275,6 +279,7 @@ impl Scene {
                         &inv,
                     )?,
                     load_steps,
+                    step_growth,
                     dynamic,
                     modal,
                 });
@@ -540,6 +545,9 @@ pub struct Stage {
     pub terms: Vec<Term>,
     /// Number of equal load steps (time steps of a dynamic stage).
     pub load_steps: u32,
+    /// How far an easy load step may grow over the nominal one (`solver.step_growth`; 1 for a
+    /// dynamic stage, whose time steps stay equal).
+    pub step_growth: u32,
     /// How a dynamic stage is integrated in time; `None` for a static stage.
     pub dynamic: Option<super::dynamic::DynamicStage>,
     /// The modal analysis at the stage's start, if any ([`super::modal`]).

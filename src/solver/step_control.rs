@@ -5,8 +5,12 @@
 //! (`t_end` = 1), a dynamic stage's the time of the record (s). A step goes from the converged
 //! t to the target t + dt (the stage's end when that is within a relative 1e-12 of it); a
 //! failed step is retried with dt/2 (at most `max_cutbacks` times in a row), and dt doubles
-//! back towards `dt_max` after two successes in a row. Every decision rests on collective
-//! outcomes, so all ranks take the same path.
+//! back towards the nominal step after two successes in a row. With a growth factor G > 1
+//! (`solver.step_growth`, static stages) a step that converged in at most
+//! [`EASY_STEP_ITERATIONS`] Newton iterations doubles the next one, up to G times the nominal
+//! step, and a step that took more than [`HARD_STEP_ITERATIONS`] halves it again, not below
+//! the nominal one. Every decision rests on collective outcomes (converged or not, the
+//! iteration count), so all ranks take the same path.
 
 use super::error::SolveError;
 use super::report::SolveReport;
@@ -47,8 +51,16 @@ impl StepKind {
     }
 }
 
-/// Where the stepping of a stage stands. Step checkpoints store `t`, `dt` and `streak`; `t_end`
-/// and `dt_max` follow from the scene.
+/// Newton iterations of a converged step at most which the next step may grow beyond the
+/// nominal one (`solver.step_growth`).
+pub const EASY_STEP_ITERATIONS: u32 = 1;
+
+/// Newton iterations of a converged step above which a grown step shrinks back towards the
+/// nominal one.
+pub const HARD_STEP_ITERATIONS: u32 = 3;
+
+/// Where the stepping of a stage stands. Step checkpoints store `t`, `dt` and `streak`;
+/// `t_end`, `dt_nominal` and `dt_max` follow from the scene.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct StepControl {
     /// Time reached in the stage (0 at its start).
@@ -59,31 +71,40 @@ pub struct StepControl {
     pub streak: u32,
     /// The stage's end time.
     pub t_end: f64,
-    /// The largest increment (the stage's nominal step).
+    /// The stage's nominal step, t_end over its load (time) steps: where a cut-back grows back to.
+    pub dt_nominal: f64,
+    /// The largest increment: the nominal step times the growth factor (1: no growth).
     pub dt_max: f64,
 }
 
 impl StepControl {
     /// The start of a stage of `n_steps` equal steps from 0 to `t_end`.
     pub fn new(t_end: f64, n_steps: u32) -> Self {
+        StepControl::growing(t_end, n_steps, 1)
+    }
+
+    /// The start of a stage of `n_steps` nominal steps from 0 to `t_end` whose easy steps may
+    /// grow to `growth` times the nominal step (1: equal steps).
+    pub fn growing(t_end: f64, n_steps: u32, growth: u32) -> Self {
         let dt = t_end / n_steps.max(1) as f64;
         StepControl {
             t: 0.0,
             dt,
             streak: 0,
             t_end,
-            dt_max: dt,
+            dt_nominal: dt,
+            dt_max: dt * growth.max(1) as f64,
         }
     }
 
     /// A stage resumed at `t` with increment `dt` and success count `streak` (a step
-    /// checkpoint), of `n_steps` nominal steps to `t_end`.
-    pub fn resumed(t: f64, dt: f64, streak: u32, t_end: f64, n_steps: u32) -> Self {
+    /// checkpoint), of `n_steps` nominal steps to `t_end` growing to `growth` times.
+    pub fn resumed(t: f64, dt: f64, streak: u32, t_end: f64, n_steps: u32, growth: u32) -> Self {
         StepControl {
             t,
             dt,
             streak,
-            ..StepControl::new(t_end, n_steps)
+            ..StepControl::growing(t_end, n_steps, growth)
         }
     }
 
@@ -107,12 +128,22 @@ impl StepControl {
         }
     }
 
-    /// Records a converged step to `t1`; dt grows back after two successes in a row.
-    pub fn accept(&mut self, t1: f64) {
+    /// Records a step to `t1` converged in `iterations` Newton iterations: below the nominal
+    /// step dt grows back after two successes in a row; from it on it doubles after an easy
+    /// step up to `dt_max` and halves after a hard one down to the nominal step.
+    pub fn accept(&mut self, t1: f64, iterations: u32) {
         self.t = t1;
         self.streak += 1;
-        if self.streak >= 2 && self.dt < self.dt_max {
+        if self.dt < self.dt_nominal {
+            if self.streak >= 2 {
+                self.dt = (2.0 * self.dt).min(self.dt_nominal);
+                self.streak = 0;
+            }
+        } else if iterations <= EASY_STEP_ITERATIONS && self.dt < self.dt_max {
             self.dt = (2.0 * self.dt).min(self.dt_max);
+            self.streak = 0;
+        } else if iterations > HARD_STEP_ITERATIONS && self.dt > self.dt_nominal {
+            self.dt = (0.5 * self.dt).max(self.dt_nominal);
             self.streak = 0;
         }
     }
@@ -141,9 +172,10 @@ impl StepControl {
             let before = report.newton_iterations;
             match attempt(self.t, next, report) {
                 Ok(()) => {
+                    let iterations = report.newton_iterations - before;
                     report.steps += 1;
-                    report.newton_per_step.push(report.newton_iterations - before);
-                    self.accept(next);
+                    report.newton_per_step.push(iterations);
+                    self.accept(next, iterations);
                     return Ok(());
                 }
                 Err(e) if e.recoverable() && cuts < max_cutbacks => {
@@ -178,7 +210,7 @@ mod tests {
         let mut times = Vec::new();
         while !s.done() {
             let t1 = s.target();
-            s.accept(t1);
+            s.accept(t1, 1);
             times.push(t1);
         }
         assert_eq!(times, vec![0.25, 0.5, 0.75, 1.0]);
@@ -189,12 +221,45 @@ mod tests {
         let mut s = StepControl::new(2.0, 2);
         s.cut_back();
         assert_eq!(s.target(), 0.5);
-        s.accept(0.5);
+        s.accept(0.5, 1);
         assert_eq!(s.dt, 0.5);
-        s.accept(s.target());
+        s.accept(s.target(), 1);
         assert_eq!((s.t, s.dt), (1.0, 1.0));
-        s.accept(s.target());
+        s.accept(s.target(), 1);
         assert!(s.done());
+    }
+
+    #[test]
+    fn easy_steps_grow_to_the_cap_and_hard_ones_shrink_to_the_nominal_step() {
+        let mut s = StepControl::growing(1.0, 8, 4);
+        s.accept(s.target(), EASY_STEP_ITERATIONS);
+        assert_eq!((s.t, s.dt), (0.125, 0.25));
+        s.accept(s.target(), EASY_STEP_ITERATIONS);
+        assert_eq!((s.t, s.dt), (0.375, 0.5));
+        s.accept(s.target(), EASY_STEP_ITERATIONS);
+        assert_eq!((s.t, s.dt), (0.875, 0.5), "capped at 4 × 1/8");
+        assert_eq!(s.target(), 1.0, "lands on the stage's end");
+        let mut s = StepControl::growing(1.0, 8, 4);
+        s.dt = 0.5;
+        s.accept(s.target(), HARD_STEP_ITERATIONS + 1);
+        assert_eq!(s.dt, 0.25);
+        s.accept(s.target(), HARD_STEP_ITERATIONS + 1);
+        s.accept(s.target(), HARD_STEP_ITERATIONS + 1);
+        assert_eq!(s.dt, 0.125, "not below the nominal step");
+        s.accept(s.target(), HARD_STEP_ITERATIONS);
+        assert_eq!(s.dt, 0.125, "neither easy nor hard: kept");
+    }
+
+    #[test]
+    fn without_growth_easy_steps_keep_the_nominal_step() {
+        let mut s = StepControl::new(1.0, 8);
+        s.accept(s.target(), 0);
+        assert_eq!(s.dt, 0.125);
+        s.cut_back();
+        s.accept(s.target(), 0);
+        assert_eq!(s.dt, 0.0625, "a cut-back grows back after two successes only");
+        s.accept(s.target(), 0);
+        assert_eq!(s.dt, 0.125);
     }
 
     #[test]
@@ -221,7 +286,7 @@ mod tests {
     #[test]
     fn a_failed_time_step_is_named_in_seconds() {
         let mut s = StepControl::new(20.0, 2000);
-        s.accept(s.target());
+        s.accept(s.target(), 1);
         let mut report = SolveReport::default();
         let e = s
             .advance(0, false, StepKind::Time, &mut report, |_, _, _| {
