@@ -229,6 +229,63 @@
 //! impound_1–impound_6 7.7 min (52–114 s per stage). Over the 30 min of acceptance 2 by a
 //! third: what is left is the compute itself (assembly 0.32, linear solves 0.62 of the run).
 //!
+//! **Load steps that grow on easy steps** (`solver.step_growth`, [`crate::solver::step_control`];
+//! issue 20, acceptance 2). A step converged in one Newton iteration doubles the next one, up
+//! to G times the nominal step; a step of more than three halves it back. Restarted after
+//! `slab_1` of the run above (its checkpoint, the old scene text, a prototype build of this
+//! change reading G from the environment), four fill stages `fill_051`–`fill_054`, 2 ranks,
+//! one run after the other alone on the machine (`summary.json`):
+//!
+//! | G | stage time (4 stages) | steps | Newton iterations | residual evaluations | GMRES iterations |
+//! |---|---|---|---|---|---|
+//! | 1 (equal steps) | 76.1, 81.7 s | 32 | 40 | 83 | 272 |
+//! | 2 | 70.8 s | 20 | 32 | 67 | 205 |
+//! | 4 | 76.2 s | 20 | 32 | 67 | 205 |
+//! | 1, fill smoothed by one sweep (`-reduced_fieldsplit_fill_mg_levels_ksp_max_it 1`) | 86.6 s | 32 | 40 | 83 | 312 |
+//! | 2, the same smoothing | 66.6 s | 20 | 32 | 67 | 245 |
+//!
+//! Every stage went [3, 1, 2, 1, 1] Newton iterations over steps of 1/8, 1/8, 1/4, 1/4 and 1/4:
+//! the first step of a layer has no rate to extrapolate, and a step of a quarter takes two
+//! iterations, so G = 4 never grows past 2. The same work in 0.93 of the time (means; single
+//! runs spread ±4 % here). The one-sweep smoothing costs GMRES iterations and was not taken.
+//! Counting a step of two iterations as easy too (G = 2) made the first 20 fill stages, from
+//! the start, take 111 steps instead of 137 but 286 Newton iterations instead of 282 and
+//! 159.8 s instead of 140.9 s (assembly 90.4 s against 71.7 s: longer increments cost GP
+//! substeps, as in "Where the medium run's time goes"); one iteration stays the rule. The fine
+//! scenes take G = 2 (`scripts/make_seed_scenes.sh`); the medium ones keep equal steps, so
+//! that their canonical-LU comparisons stand.
+//!
+//! **The whole fine run with growing steps** (the scene from commit 9345339, build of its
+//! code but for the wording of the stage header line), alone on the machine, one part:
+//! `/usr/bin/time -v scripts/run_in_parts.sh inputs/scenes/seed_fine_hyperbolic.yaml DIR 2`
+//! with `BIN` that build, 2026-11-29:
+//!
+//! | interface | wall time | peak memory per rank | Newton iterations | residual evaluations | steps | cut-backs | GMRES iterations | factorizations | Newton per step (median / mean / max) | open / slipping interface points (of 25,304) |
+//! |---|---|---|---|---|---|---|---|---|---|---|
+//! | hyperbolic | **1,829.4 s (30.5 min)** | 1.93 / 1.29 GiB | 910 | 1,882 | 528 | 0 | 5,178 | 910 | 2 / 1.72 / 5 | 948 / 1,692 |
+//!
+//! | stages | wall time | steps | Newton per step | GMRES per Newton iteration |
+//! |---|---|---|---|---|
+//! | fill_001–fill_020 | 2.2 min (3–10 s per stage) | 137 | 2.06 | 2.9 |
+//! | fill_021–fill_050 | 6.0 min (9–14 s) | 157 | 1.80 | 5.1 |
+//! | slab_1 | 20 s | 5 | 1.60 | 8.4 |
+//! | fill_051–fill_086 | 13.1 min (18–28 s) | 180 | 1.37 | 8.4 |
+//! | slab_2 (the hard case) | 41 s | 6 | 1.33 | 12.0 |
+//! | slab_3 | 31 s | 5 | 1.00 | 13.4 |
+//! | impound_1–impound_6 | 6.2 min (32–85 s) | 38 | 2.05 | 8.1 |
+//!
+//! Assembly 702.6 s, linear solves 997.3 s, output 102.0 s (checkpoints 18.0 s). Against the
+//! 40.4 min of 42e465a above (a single run on another day, not a side-by-side pair): 760 →
+//! 528 steps, 1,058 → 910 Newton and 10,413 → 5,178 GMRES iterations (the structure factored
+//! at every Jacobian, the forcing terms of 0.03 and the growing steps since). Slab stage II
+//! passed with no cut-back. **Still over the 30 min of acceptance 2, by 1.6 %**; under its
+//! 3 GiB per rank. What the growing steps and the solver changes did to the results, `cfrd
+//! accuracy --reference <42e465a's run, its three parts drawn together by cfrd profiles>`:
+//! the slab table within 2.6e-4 (σ_s), 6.3e-4 (σ_a) and 1.3e-4 (deflection) of its largest
+//! values, 0.0022 MPa, 0.0041 MPa and 0.0018 cm after impoundment (0.0010 MPa, 0.0009 MPa and
+//! 0.0006 cm at the end of construction), the crest settlement within 5.5e-4, less than the
+//! medium mesh's 8 load steps leave against 32 ("The medium mesh's Newton tolerance").
+//!
 //! **The first fine run** (canonical LU).
 //! Fine mesh (76,502 elements, 256,461 DOFs, 86 fill layers, 95 stages; MUMPS on OpenBLAS),
 //! hyperbolic interface, 2 ranks. Source: commit 6549cb1: `scripts/run_in_parts.sh
@@ -1352,6 +1409,30 @@
 //! (515 Newton iterations, 3,128 GMRES iterations, 0 cut-backs, 251 MiB per rank): all three
 //! medium scenes under the 3 min of acceptance 2. The fine hyperbolic scene was not run whole
 //! on this build (its 40.4 min are 42e465a's, "The fine run").
+//!
+//! **Which is closer to the canonical LU, and the GP scenes' forcing terms** (issue 20,
+//! acceptance 1). The medium GP-interface scene on the canonical LU with e25ea71's build
+//! (`--linear-solver canonical_lu -canonical_pc_factor_mat_solver_type mumps`, the same
+//! command otherwise; 795.1 s, 532 Newton iterations, 0 cut-backs, 8 predicted starts dropped,
+//! 611 MiB per rank). Largest differences of the slab table against it:
+//!
+//! | run | end of construction σ_s / σ_a / deflection | after impoundment σ_s / σ_a / deflection |
+//! |---|---|---|
+//! | forcing terms 0.03 (e25ea71) | 0.0006 / 0.0005 MPa / 0.0003 cm | **0.079 / 0.043 MPa** / 0.0048 cm |
+//! | forcing terms 0.01, with the guard (the scene from commit 9345339) | 0.0002 / 0.0002 MPa / 0.0002 cm | 0.018 / 0.016 MPa / 0.0035 cm |
+//! | forcing terms 0.01, without the guard (c991192) | 0.0003 / 0.0004 MPa / 0.0002 cm | 0.009 / 0.020 MPa / 0.0035 cm |
+//!
+//! The construction agrees to 6e-4 MPa whatever the forcing terms; the impoundment, where the GP
+//! interface slips, carries the looser iterates' converged states 0.079 MPa away. So the
+//! GP-interface scenes on the reduced multigrid give `-snes_ksp_ew_rtol0 0.01
+//! -snes_ksp_ew_rtolmax 0.01` in their `petsc_options` (`scripts/make_seed_scenes.sh`); the
+//! solver's default stays 0.03 for the other interfaces. That scene, the build of commit
+//! 9345339's code (but for the wording of the stage header line), alone on the machine, the
+//! same command as above: **178.5 s** (assembly 90.4 s, linear solves 84.8 s; 529 Newton and
+//! 4,289 GMRES iterations, 0 cut-backs, 253 MiB per rank), its slab table the same as that of the
+//! 0.01 run with the guard above to the digits of the table. A single run: the same settings
+//! took 190.9 s on 2026-11-28 on c991192's code with the guard, so this scene sits at the 3 min
+//! of acceptance 2, under it on this day.
 //!
 //! ## Side by side: the assembly writes into PETSc's storage
 //!
