@@ -251,6 +251,26 @@ mod tests {
     }
 
     #[test]
+    fn a_grown_stage_resumed_from_a_step_checkpoint_takes_the_same_steps() {
+        let iterations = [1, 1, 2, 4, 1, 1];
+        let mut full = StepControl::growing(1.0, 16, 4);
+        let mut times = Vec::new();
+        for (k, &n) in iterations.iter().enumerate() {
+            if k == 3 {
+                // what a step checkpoint stores, and what a restart rebuilds from it
+                let (t, dt, streak) = (full.t, full.dt, full.streak);
+                let resumed = StepControl::resumed(t, dt, streak, 1.0, 16, 4);
+                assert_eq!(resumed, full, "resumed with its growth");
+            }
+            let t1 = full.target();
+            full.accept(t1, n);
+            times.push(t1);
+        }
+        assert_eq!(times, [0.0625, 0.1875, 0.4375, 0.6875, 0.8125, 1.0]);
+        assert!(full.done());
+    }
+
+    #[test]
     fn without_growth_easy_steps_keep_the_nominal_step() {
         let mut s = StepControl::new(1.0, 8);
         s.accept(s.target(), 0);
