@@ -274,11 +274,17 @@
 //! | slab_3 | 31 s | 5 | 1.00 | 13.4 |
 //! | impound_1–impound_6 | 6.2 min (32–85 s) | 38 | 2.05 | 8.1 |
 //!
+//! A second run, with the build of commit 25c0469 (the same code with the stage header's
+//! wording and a test added), the same command, alone, later the same day: **1,813.7 s (30.2
+//! min)**, assembly 713.7 s, linear solves 982.0 s, output 104.6 s, peak 1.93 / 1.32 GiB per
+//! rank, the same counts and the same slab table byte for byte (`cmp` of
+//! `fig08_slab_stress.csv`).
+//!
 //! Assembly 702.6 s, linear solves 997.3 s, output 102.0 s (checkpoints 18.0 s). Against the
 //! 40.4 min of 42e465a above (a single run on another day, not a side-by-side pair): 760 →
 //! 528 steps, 1,058 → 910 Newton and 10,413 → 5,178 GMRES iterations (the structure factored
 //! at every Jacobian, the forcing terms of 0.03 and the growing steps since). Slab stage II
-//! passed with no cut-back. **Still over the 30 min of acceptance 2, by 1.6 %**; under its
+//! passed with no cut-back. **Still over the 30 min of acceptance 2, by 0.8–1.6 %**; under its
 //! 3 GiB per rank. What the growing steps and the solver changes did to the results, `cfrd
 //! accuracy --reference <42e465a's run, its three parts drawn together by cfrd profiles>`:
 //! the slab table within 2.6e-4 (σ_s), 6.3e-4 (σ_a) and 1.3e-4 (deflection) of its largest
