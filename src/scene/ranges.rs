@@ -71,12 +71,12 @@ pub fn check_loads(loads: &LoadsSpec, path: &str, inv: Inv) -> Result<(), SceneE
     Ok(())
 }
 
-/// Checks a load-step count at `path`.
-fn check_load_steps(n: u32, path: &str, inv: Inv) -> Result<(), SceneError> {
-    if (1..=MAX_LOAD_STEPS).contains(&n) {
+/// Checks a count at `path` (load steps, step growth) against [1, `max`].
+fn check_count(n: u32, max: u32, path: &str, inv: Inv) -> Result<(), SceneError> {
+    if (1..=max).contains(&n) {
         Ok(())
     } else {
-        Err(inv(path, format!("{n} must lie in [1, {MAX_LOAD_STEPS}]")))
+        Err(inv(path, format!("{n} must lie in [1, {max}]")))
     }
 }
 
@@ -85,7 +85,7 @@ pub fn check_stages_and_counts(f: &SceneFile, inv: Inv) -> Result<(), SceneError
     for (k, st) in f.stages.iter().enumerate() {
         check_loads(&st.loads, &format!("stages[{k}].loads"), inv)?;
         if let Some(n) = st.load_steps {
-            check_load_steps(n, &format!("stages[{k}].load_steps"), inv)?;
+            check_count(n, MAX_LOAD_STEPS, &format!("stages[{k}].load_steps"), inv)?;
         }
     }
     for (i, b) in f.boundary.iter().enumerate() {
@@ -106,16 +106,8 @@ pub fn check_stages_and_counts(f: &SceneFile, inv: Inv) -> Result<(), SceneError
 
 /// Checks the solver's iteration, step and cut-back counts.
 fn check_solver_counts(s: &SolverSpec, inv: Inv) -> Result<(), SceneError> {
-    check_load_steps(s.load_steps, "solver.load_steps", inv)?;
-    if !(1..=MAX_STEP_GROWTH).contains(&s.step_growth) {
-        return Err(inv(
-            "solver.step_growth",
-            format!(
-                "{} must lie in [1, {MAX_STEP_GROWTH}] (1: equal load steps)",
-                s.step_growth
-            ),
-        ));
-    }
+    check_count(s.load_steps, MAX_LOAD_STEPS, "solver.load_steps", inv)?;
+    check_count(s.step_growth, MAX_STEP_GROWTH, "solver.step_growth", inv)?;
     if s.max_cutbacks > MAX_CUTBACKS {
         return Err(inv(
             "solver.max_cutbacks",

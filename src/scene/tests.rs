@@ -154,20 +154,24 @@ fn a_bad_cfrd_value_names_its_yaml_path_in_the_scene_error() {
     assert!(err.contains("mesh.cfrd") && err.contains("fill_layer"), "{err}");
 }
 
+/// The seed scene `file` of `inputs/scenes` with `from` replaced by `to` (which must occur),
+/// parsed from the scenes directory.
+fn edited_seed_scene(file: &str, from: &str, to: &str) -> Result<Scene, SceneError> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("inputs/scenes");
+    let text = std::fs::read_to_string(dir.join(file)).expect("seed scene");
+    let edited = text.replace(from, to);
+    assert_ne!(edited, text, "{file} no longer holds '{from}'");
+    Scene::from_str(&edited, "t.yaml", &dir)
+}
+
 #[test]
 fn fill_load_steps_apply_to_the_fill_stages_only() {
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/inputs/scenes/seed_coarse_hyperbolic.yaml"
-    );
-    let text = std::fs::read_to_string(path).expect("seed scene");
     let with = |steps: &str| {
-        let t = text.replace(
+        edited_seed_scene(
+            "seed_coarse_hyperbolic.yaml",
             "impoundment_stages: 3 }",
             &format!("impoundment_stages: 3, fill_load_steps: {steps} }}"),
-        );
-        assert_ne!(t, text, "the coarse scene's mesh line changed");
-        Scene::from_str(&t, "t.yaml", Path::new("."))
+        )
     };
     let scene = with("2").expect("valid scene");
     assert_eq!(scene.file.solver.load_steps, 8);
@@ -181,18 +185,12 @@ fn fill_load_steps_apply_to_the_fill_stages_only() {
 
 #[test]
 fn step_growth_applies_to_the_static_stages_only() {
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/inputs/scenes/seed_coarse_mohr_coulomb_quake.yaml"
-    );
-    let text = std::fs::read_to_string(path).expect("seed quake scene");
     let with = |growth: &str| {
-        let t = text.replace(
+        edited_seed_scene(
+            "seed_coarse_mohr_coulomb_quake.yaml",
             "load_steps: 8,",
             &format!("load_steps: 8, step_growth: {growth},"),
-        );
-        assert_ne!(t, text, "the quake scene's solver line changed");
-        Scene::from_str(&t, "t.yaml", Path::new(path).parent().expect("scenes directory"))
+        )
     };
     let scene = with("4").expect("valid scene");
     assert!(scene.stages.iter().any(|st| st.dynamic.is_some()));
