@@ -3,7 +3,7 @@
 # working session or a cluster job's time limit). Every part is a `cfrd run` in OUT/part_<k>;
 # when a part stops before the end (killed, out of time), calling this script again with the
 # same arguments restarts from the newest checkpoint (`--restart OUT/part_<k>/checkpoint.h5`,
-# written at the end of stages, paced so that writing costs at most 5 % of the run) into OUT/part_<k+1>. A restarted run gives the same results,
+# written at the end of stages, paced so that writing costs at most 2.5 % of the run) into OUT/part_<k+1>. A restarted run gives the same results,
 # bit for bit, as an uninterrupted one at the same rank count.
 #
 # Usage: scripts/run_in_parts.sh SCENE OUT [RANKS] [-- extra `cfrd run` arguments]

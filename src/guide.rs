@@ -134,7 +134,7 @@
 //! |---|---|---|
 //! | coarse | 8 fill layers, 30 m panels, 3 impoundment stages | canonical LU (PETSc's LU) |
 //! | medium | 30 fill layers, 15 m panels, 4 impoundment stages | reduced multigrid (`reduced_amg`), load steps started from the last step's rate (`predictor: extrapolate`); its quake scenes canonical LU with MUMPS and the plain start |
-//! | fine | 86 fill layers (as the seed), 2 elements per panel, 6 impoundment stages | reduced multigrid (`reduced_amg`), `predictor: extrapolate`; 42–77 min on 2 ranks depending on the interface ([`crate::performance`], "The fine run"), run it [in parts](#runs-in-parts) where a job or a session is shorter |
+//! | fine | 86 fill layers (as the seed), 2 elements per panel, 6 impoundment stages | reduced multigrid (`reduced_amg`), `predictor: extrapolate`; 30 min (hyperbolic) to 77 min on 2 ranks depending on the interface ([`crate::performance`], "The fine run"), run it [in parts](#runs-in-parts) where a job or a session is shorter |
 //!
 //! All of them use 8 load steps per stage and at most 15 Newton iterations per step; the
 //! coarse scenes and the quake scenes stop Newton at `newton_tol: 1.0e-5` (above the noise of
@@ -419,9 +419,9 @@
 //!
 //! A staged scene writes `<out>/checkpoint.h5` at the end of a completed stage
 //! (`output: { checkpoint: none }` turns it off): at every stage on small and medium meshes; on
-//! large ones once the run has computed 19 times as long as the last checkpoint and results
-//! copy took, so that writing costs at most 5 % of the run ([`crate::io::pacing`]; the fine
-//! seed mesh every one to five stages), and always after the last stage and at
+//! large ones once the run has computed 39 times as long as the last checkpoint and results
+//! copy took, so that writing costs at most 2.5 % of the run ([`crate::io::pacing`]; the fine
+//! seed mesh every few stages), and always after the last stage and at
 //! `--stop-after-stage`. `output: { checkpoint: step }` writes it after
 //! every converged load step as well, for stages longer than a job may run: a restart then
 //! continues inside the stage. `cfrd run --checkpoint stage|step|none` overrides the scene's

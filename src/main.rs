@@ -59,7 +59,7 @@ enum Command {
         #[arg(long, value_name = "K|+N", value_parser = parse_stop_after)]
         stop_after_stage: Option<cfrd::run::StopAfter>,
         /// When to write `<out>/checkpoint.h5`: `stage` (end of stages, paced so that writing
-        /// costs at most 5 % of the run; always after the last and at a stop), `step` (also after
+        /// costs at most 2.5 % of the run; always after the last and at a stop), `step` (also after
         /// every converged load step; a restart continues inside the stage) or `none`.
         /// Overrides the scene's `output.checkpoint` without changing the scene, so a run in
         /// parts may switch to step checkpoints for its long stages.

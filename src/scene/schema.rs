@@ -482,7 +482,7 @@ pub struct OutputSpec {
 #[serde(rename_all = "snake_case")]
 pub enum CheckpointMode {
     /// At the end of completed stages (replacing the previous checkpoint): every stage unless
-    /// writing it and the results takes more than 1/20 of the time since the last, and always
+    /// writing it and the results takes more than 1/40 of the time since the last, and always
     /// after the last stage and at a stop ([`crate::io::pacing`]).
     Stage,
     /// After every converged load step, and at the end of every stage: a restart continues
