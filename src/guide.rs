@@ -134,7 +134,7 @@
 //! |---|---|---|
 //! | coarse | 8 fill layers, 30 m panels, 3 impoundment stages | canonical LU (PETSc's LU) |
 //! | medium | 30 fill layers, 15 m panels, 4 impoundment stages | reduced multigrid (`reduced_amg`), load steps started from the last step's rate (`predictor: extrapolate`); its quake scenes canonical LU with MUMPS and the plain start |
-//! | fine | 86 fill layers (as the seed), 2 elements per panel, 6 impoundment stages | reduced multigrid (`reduced_amg`), `predictor: extrapolate`; 30 min (hyperbolic) to 77 min on 2 ranks depending on the interface ([`crate::performance`], "The fine run"), run it [in parts](#runs-in-parts) where a job or a session is shorter |
+//! | fine | 86 fill layers (as the seed), 2 elements per panel, 6 impoundment stages | reduced multigrid (`reduced_amg`), `predictor: extrapolate`; 29–36 min on 2 ranks depending on the interface (ideal elasto-plastic 28.9, hyperbolic 29.6, GP 35.5 min) ([`crate::performance`], "The fine run"), run it [in parts](#runs-in-parts) where a job or a session is shorter |
 //!
 //! All of them use 8 load steps per stage and at most 15 Newton iterations per step; the
 //! coarse scenes and the quake scenes stop Newton at `newton_tol: 1.0e-5` (above the noise of

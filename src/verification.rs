@@ -355,58 +355,58 @@
 //! ### Fine mesh: the three interface models
 //!
 //! Source: the fine runs of [`crate::performance`] ("The fine run"; the reduced multigrid,
-//! incompatible-modes slab, the bounded GP reading): Mohr–Coulomb and GP interface with the
-//! build of commit 215176c and `newton_tol` 1e-5, the hyperbolic interface with the build of
-//! commit cfad9f2 and the scene's `newton_tol` 1e-4 of today (on the medium mesh the two
-//! tolerances moved the slab values by at most 0.03 MPa and 0.005 cm, [`crate::performance`],
-//! "The medium mesh's Newton tolerance"); `scripts/make_seed_fine_figures.sh DIR` with the three
-//! run directories under `DIR`: `seed_fine_slab.png`, `seed_fine_<model>_fig*.png`. Values
-//! interpolated linearly between each profile's points.
+//! incompatible-modes slab, the bounded GP reading): the three scenes as they are
+//! (`newton_tol` 1e-4, load steps growing on easy steps), build of commit 217ffc8, 2 ranks,
+//! 2026-11-29; `scripts/make_seed_fine_figures.sh DIR` with the three run directories under
+//! `DIR`: `seed_fine_slab.png`, `seed_fine_<model>_fig*.png`. Values interpolated linearly
+//! between each profile's points. The earlier runs of the two plastic scenes (build of
+//! 215176c, `newton_tol` 1e-5, equal load steps) gave the same table but for 0.01 MPa in
+//! ten of its stresses.
 //!
 //! ![slab stresses and deflection by interface model, fine mesh][fine]
 //!
 //! | elevation | state | σ_s hyperbolic / MC / GP | σ_a hyperbolic / MC / GP | deflection hyperbolic / MC / GP |
 //! |---|---|---|---|---|
-//! | 2697 m | end of construction | −2.67 / −2.91 / −2.91 | −0.92 / −1.00 / −1.02 | −0.2 / −0.2 / −0.2 |
-//! | 2722 m | end of construction | −1.96 / −2.12 / −2.19 | −1.12 / −1.21 / −1.25 | −0.2 / −0.2 / −0.2 |
-//! | 2703 m | after impoundment | −7.80 / −7.59 / −7.83 | −5.31 / −5.24 / −5.31 | 11.4 / 11.4 / 11.4 |
-//! | 2722 m | after impoundment | −8.27 / −7.88 / −8.09 | −6.25 / −6.06 / −6.19 | 13.7 / 13.7 / 13.8 |
-//! | 2761 m | after impoundment | −4.22 / −4.13 / −3.94 | −5.87 / −5.41 / −5.60 | 11.4 / 11.4 / 11.5 |
-//! | 2814 m | after impoundment | −1.50 / −1.40 / −1.39 | −3.24 / −2.93 / −2.94 | 5.2 / 5.2 / 5.3 |
+//! | 2697 m | end of construction | −2.67 / −2.90 / −2.91 | −0.92 / −1.00 / −1.02 | −0.2 / −0.2 / −0.2 |
+//! | 2722 m | end of construction | −1.96 / −2.11 / −2.19 | −1.12 / −1.20 / −1.25 | −0.2 / −0.2 / −0.2 |
+//! | 2703 m | after impoundment | −7.80 / −7.59 / −7.82 | −5.31 / −5.24 / −5.31 | 11.4 / 11.4 / 11.4 |
+//! | 2722 m | after impoundment | −8.26 / −7.88 / −8.08 | −6.25 / −6.06 / −6.18 | 13.7 / 13.7 / 13.8 |
+//! | 2761 m | after impoundment | −4.22 / −4.12 / −3.94 | −5.87 / −5.41 / −5.61 | 11.4 / 11.4 / 11.5 |
+//! | 2814 m | after impoundment | −1.50 / −1.39 / −1.39 | −3.25 / −2.93 / −2.95 | 5.2 / 5.2 / 5.3 |
 //!
 //! * **The hyperbolic interface compresses the slab most after impoundment.** Its largest slope
 //!   compression is −8.43 MPa (2714 m; MC −8.09, GP −8.39), its largest axial one −6.54 MPa
-//!   (MC −6.22, GP −6.29); the deflections agree within 0.25 cm (largest 14.1 cm, 2736 m).
+//!   (MC −6.22, GP −6.30); the deflections agree within 0.25 cm (largest 14.1 cm, 2736 m).
 //!   Largest difference over the section from the hyperbolic run (as a fraction of the larger
-//!   of the two runs' largest values), after impoundment: 0.83 MPa in σ_s at the slab's foot
-//!   (9.8 %, MC) and 0.64 MPa at 2738 m (7.5 %, GP), 0.47 MPa in σ_a (7.2 %, MC) and 0.42 MPa
-//!   (6.4 %, GP). At the end of construction the two plastic interfaces compress the slab's
-//!   foot 0.25 MPa more (8.3–8.5 % in σ_s).
+//!   of the two runs' largest values), after impoundment: 0.82 MPa in σ_s at the slab's foot
+//!   (9.7 %, MC) and 0.63 MPa at 2738 m (7.4 %, GP), 0.46 MPa in σ_a (7.1 %, MC) and 0.40 MPa
+//!   (6.0 %, GP). At the end of construction the two plastic interfaces compress the lower slab
+//!   up to 0.24 and 0.26 MPa more (8.0 and 8.6 % in σ_s, 2704 and 2710 m).
 //! * **Against the trilinear slab** (the table above): the incompatible-modes slab moves the
 //!   hyperbolic fine run's σ_s by at most 0.03 MPa in these rows and its σ_a by up to 0.20 MPa
 //!   (2703 m, −5.31 against −5.51).
 //! * **The two plastic interfaces agree closely on the fine mesh.** Largest difference over the section
 //!   (as a fraction of the larger of the two runs' largest values): at the end of construction
-//!   0.09 MPa in σ_s (2.9 %, 2732 m) and 0.07 MPa in σ_a (4.7 %, 2804 m); after impoundment
-//!   0.38 MPa in σ_s (4.5 %, at the slab's foot, 2682 m), 0.20 MPa in σ_a (3.2 %, 2754 m) and
+//!   0.11 MPa in σ_s (3.5 %, 2734 m) and 0.08 MPa in σ_a (5.7 %, 2804 m); after impoundment
+//!   0.36 MPa in σ_s (4.2 %, at the slab's foot, 2682 m), 0.21 MPa in σ_a (3.3 %, 2754 m) and
 //!   0.24 cm in deflection (1.7 %). The largest slope compression after impoundment is −8.39
 //!   (GP) against −8.09 MPa, the largest deflection 14.2 against 14.1 cm.
 //! * **Against the medium mesh** (the medium table above, with its own source): the fine
 //!   values lie within 0.34 MPa in σ_s, 0.36 MPa in σ_a and 0.6 cm of the medium ones in these
 //!   rows, with the same pattern: the two plastic interfaces compress the slab's foot equally
-//!   at the end of construction (−2.91 both), and after impoundment the GP interface gives the
+//!   at the end of construction (−2.90 and −2.91), and after impoundment the GP interface gives the
 //!   larger slope compression low on the slab and the smaller one above about 2740 m.
 //! * **The seed's axial finding** ("below 2760 m the GP interface gives smaller axial stress,
 //!   above it larger"): on the fine mesh the GP interface's axial compression is larger than
-//!   the ideal elasto-plastic one's over the whole section after impoundment (−5.31 against
-//!   −5.24 MPa at 2703 m, −5.60 against −5.41 at 2761 m), by at most 0.20 MPa: not reproduced
-//!   against this model. Against the hyperbolic interface the GP one's axial compression is
-//!   the smaller from about 2715 m up (by 0.20–0.30 MPa at every point above 2760 m) and the
-//!   larger at the slab's foot (by 0.42 MPa at 2682 m): the lower half of the finding holds
+//!   the ideal elasto-plastic one's from the foot to 2818 m after impoundment (−5.31 against
+//!   −5.24 MPa at 2703 m, −5.61 against −5.41 at 2761 m, by at most 0.21 MPa) and smaller
+//!   above it, by at most 0.06 MPa at the crest: not reproduced against this model. Against the hyperbolic interface the GP one's axial compression is
+//!   the smaller from about 2712 m up (by 0.20–0.30 MPa at every point above 2760 m) and the
+//!   larger at the slab's foot (by 0.40 MPa at 2682 m): the lower half of the finding holds
 //!   in part, the upper half is reversed.
 //! * **The GP interface itself** (`fig11_interface.csv` after impoundment): a closure of
 //!   7.3–7.4 mm over most of the face (median 7.32 mm, the Bandis limit 8.0 mm), 4.1–4.4 mm
-//!   just above the feet of slab stages II and III (2738 m, 2806 m) and 6.0–7.0 mm above the
+//!   just above the feet of slab stages II and III (2737 m, 2806 m) and 6.0–7.0 mm above the
 //!   water line, no opening; the shear jump along the slope is largest at the joint between
 //!   slab stages I and II, −44.9 mm at 2736 m (medium: −43 mm at 2734 m). The closure carried by the bound
 //!   ("Known defects") is a property of the model, not of the mesh.
