@@ -126,8 +126,8 @@
 //!
 //! **The three interface models, the scenes as they are** (issue 20, acceptances 2 and 5:
 //! `newton_tol` 1e-4, 8 load steps per stage growing to twice the nominal one on easy steps,
-//! `linear_solver: reduced_amg`, `predictor: extrapolate`; forcing terms of 0.01 for the two
-//! plastic interfaces, 0.03 for the hyperbolic one). Build of commit 217ffc8, each scene alone
+//! `linear_solver: reduced_amg`, `predictor: extrapolate`; forcing terms of 0.01 for the GP
+//! interface, 0.03 for the other two). Build of commit 217ffc8, each scene alone
 //! on the machine, one part, one after the other on 2026-11-29: `BIN=… /usr/bin/time -v
 //! scripts/run_in_parts.sh inputs/scenes/seed_fine_<model>.yaml DIR/<model> 2` (the
 //! hyperbolic row is the run of "The whole fine run with the writes paced at 2.5 %" below, the
@@ -154,9 +154,9 @@
 //! | slab_3 | 29.2 / 26.9 / 58.1 s | 5 / 5 / 5 | 1.00 / 1.00 / 2.00 | 13.4 / 12.8 / 14.1 |
 //! | impound_1–impound_6 | 341.3 / 329.0 / 494.5 s | 38 / 37 / 43 | 2.05 / 2.05 / 2.44 | 8.1 / 8.5 / 9.1 |
 //!
-//! The fill is the same work for the three (the interface is not in place below slab stage I,
-//! and above it a fill stage costs the same); the GP interface's forcing terms of 0.01 cost
-//! GMRES iterations from the first stage on, and it costs more in the slab stages and the
+//! The fill is the same work for the hyperbolic and ideal elasto-plastic scenes (the interface
+//! is not in place below slab stage I, and above it a fill stage costs the same); the GP
+//! scene's forcing terms of 0.01 cost GMRES iterations from the first stage on, and it costs more in the slab stages and the
 //! impoundment, where its points slip (16,512 of 25,304 after impoundment against 2 with the
 //! ideal elasto-plastic interface) and it needs more Newton iterations per step. Slab stage II,
 //! the hard case of the canonical LU's run below, passed with no cut-back in all three. The
