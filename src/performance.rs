@@ -345,7 +345,11 @@
 //! acceptance 2, by 1.4 %**, and under its 3 GiB per rank. Single runs on different days
 //! moved the assembly by 8 % (759.1 s here against 702.6 and 713.7 s) and the linear solves
 //! by 9 % (912.0 s against 997.3 and 982.0 s), more than that margin: on another day, or
-//! another machine of this kind, the same run may take 30 min or a little more.
+//! another machine of this kind, the same run may take 30 min or a little more. A second run
+//! of the same code (the build of 217ffc8), the same command, alone on the machine three hours
+//! later, after the plastic scenes of "The fine run" above: **1,767.2 s (29.5 min)**, assembly 752.2 s,
+//! linear solves 909.3 s, output 76.2 s, peak 1.93 GiB per rank, the same counts and the same
+//! slab table byte for byte (`cmp` of `fig08_slab_stress.csv`).
 //!
 //! The medium GP-interface scene (forcing terms 0.01) with the same two builds, one run after
 //! the other alone on the machine (`/usr/bin/time -v mpirun -n 2 cfrd run
