@@ -22,7 +22,7 @@
 //! | `run` | the `cfrd run` pipeline (feature `native`) |
 //! | [`point`] | `cfrd point`: material-point tests from YAML, CSV and PNG output |
 //! | [`plot`] | PNG line plots (figures of point tests and dam outputs) |
-//! | [`profiles`] | the seed's static outputs (Figs. 7–11): slab, interface and dam profiles, probes |
+//! | [`post`] | post-processing: the seed's static and dynamic figures and tables, accuracy against a reference |
 //! | [`seismic`] | design spectrum, response spectra, artificial accelerograms, record readers, `cfrd accel` |
 //! | [`fuzzing`] | one input through one reader: the entry points of the fuzz targets and of their corpus replay |
 //!
@@ -30,7 +30,6 @@
 //! `native` feature; the constitutive library, the mesh code and the element kernels build
 //! and test without it (`cargo test --no-default-features --lib`).
 
-pub mod accuracy;
 pub mod conventions;
 pub mod element;
 pub mod error;
@@ -48,13 +47,7 @@ pub mod parallel;
 pub mod performance;
 pub mod plot;
 pub mod point;
-pub mod profiles;
-#[cfg(feature = "native")]
-pub mod quake;
-#[cfg(feature = "native")]
-pub mod quake_figures;
-#[cfg(feature = "native")]
-pub mod quake_probes;
+pub mod post;
 #[cfg(feature = "native")]
 pub mod run;
 pub mod scene;

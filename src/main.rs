@@ -405,10 +405,12 @@ fn main() -> ExitCode {
             out,
         } => {
             let study = match quake {
-                true => cfrd::accuracy::Study::Quake,
-                false => cfrd::accuracy::Study::Static,
+                true => cfrd::post::accuracy::Study::Quake,
+                false => cfrd::post::accuracy::Study::Static,
             };
-            match label_pairs(&runs).and_then(|p| cfrd::accuracy::write_study(study, &reference, &p, &out)) {
+            match label_pairs(&runs)
+                .and_then(|p| cfrd::post::accuracy::write_study(study, &reference, &p, &out))
+            {
                 Ok(files) => {
                     for f in files {
                         println!("{}", f.display());
@@ -423,13 +425,13 @@ fn main() -> ExitCode {
         }
         Command::Overlay { runs, out, quake } => {
             let table = if quake {
-                cfrd::profiles::SlabTable::Quake
+                cfrd::post::profiles::SlabTable::Quake
             } else {
-                cfrd::profiles::SlabTable::Static
+                cfrd::post::profiles::SlabTable::Static
             };
-            match label_pairs(&runs)
-                .map(|p| cfrd::profiles::overlay_slab_profiles(&p, table, &out).map_err(|e| e.to_string()))
-            {
+            match label_pairs(&runs).map(|p| {
+                cfrd::post::profiles::overlay_slab_profiles(&p, table, &out).map_err(|e| e.to_string())
+            }) {
                 Ok(Ok(n)) => {
                     println!("{n} rows from {} run(s): {}", runs.len(), out.display());
                     ExitCode::SUCCESS
@@ -595,10 +597,13 @@ fn profiles_of_parts(
             scene.display()
         )
     })?;
-    let files: Vec<PathBuf> = runs.iter().map(|r| cfrd::io::compare::results_file(r)).collect();
+    let files: Vec<PathBuf> = runs
+        .iter()
+        .map(|r| cfrd::io::results_reader::results_file(r))
+        .collect();
     std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
-    let statics = cfrd::run::write_profiles_from_results(&s, spec, &files, out)?;
-    let quake = cfrd::quake_figures::write_quake_figures(&s, spec, &files, &[], out)?;
+    let statics = cfrd::post::profiles_from_results::write_profiles_from_results(&s, spec, &files, out)?;
+    let quake = cfrd::post::quake_figures::write_quake_figures(&s, spec, &files, &[], out)?;
     Ok(statics.len() + quake.len())
 }
 

@@ -12,6 +12,7 @@
 //! (e.g. the slip of a joint loaded normally) is measured against its physical scale (the
 //! displacements), not against its own round-off.
 
+use crate::io::results_reader::{open, results_file, stage_name, step_names};
 use std::fmt;
 use std::path::Path;
 
@@ -70,29 +71,6 @@ impl fmt::Display for DiffTable<'_> {
     }
 }
 
-/// Opens a results file for serial reading (rank 0 or no MPI).
-pub(crate) fn open(p: &Path) -> Result<hdf5::File, String> {
-    hdf5::File::open(p).map_err(|e| format!("{}: {e}", p.display()))
-}
-
-/// The step group names (`000001`, ...) of a results file, in order.
-pub(crate) fn step_names(f: &hdf5::File, p: &Path) -> Result<Vec<String>, String> {
-    let g = f
-        .group("/steps")
-        .map_err(|e| format!("{}: /steps: {e}", p.display()))?;
-    let mut v = g.member_names().map_err(|e| e.to_string())?;
-    v.sort();
-    Ok(v)
-}
-
-/// The `stage` attribute of a step group, if it has one.
-pub(crate) fn stage_name(g: &hdf5::Group) -> Option<String> {
-    g.attr("stage")
-        .and_then(|x| x.read_scalar::<hdf5::types::VarLenUnicode>())
-        .map(|s| s.to_string())
-        .ok()
-}
-
 /// The key a step is matched by: its stage name and time (exact bits) when it has both
 /// attributes, else its group name.
 fn step_key(f: &hdf5::File, name: &str) -> Result<String, String> {
@@ -102,15 +80,6 @@ fn step_key(f: &hdf5::File, name: &str) -> Result<String, String> {
         (Some(stage), Some(t)) => format!("{stage}@{:016x}", t.to_bits()),
         _ => name.to_string(),
     })
-}
-
-/// A results file, or the `results.h5` of a run's output directory.
-pub fn results_file(p: &Path) -> std::path::PathBuf {
-    if p.is_dir() {
-        p.join("results.h5")
-    } else {
-        p.to_path_buf()
-    }
 }
 
 /// Compares the fields of every step that both results files hold (matched as the module

@@ -24,7 +24,7 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use super::compare::{open, results_file, stage_name, step_names};
+use super::results_reader::{open, results_file, stage_name, step_names};
 use crate::mesh::{Block, Element, ElementKind, Mesh};
 use crate::scene::validate::block_pattern_matches;
 

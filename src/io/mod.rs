@@ -10,6 +10,7 @@
 //! | [`error`] | [`IoError`] and the rule that makes every error collective |
 //! | [`guard`] | I/O failures that end every rank: free-space checks, watchdog, exit code 4 |
 //! | [`integrity`] | the checksums appended to a checkpoint, checked before HDF5 reads it |
+//! | [`results_reader`] | a closed results file read serially: its steps and their stages (every post-processing reader uses it) |
 //! | [`compare`] | `cfrd compare`: field differences between two results files |
 //! | [`export`] | `cfrd export`: one step's fields as CSV, by set or probe |
 //! | [`outdir`] | `cfrd run`'s output directory: another run's files, stale temporaries |
@@ -117,6 +118,7 @@ pub mod outdir;
 pub mod pacing;
 pub mod preflight;
 pub mod redistribute;
+pub mod results_reader;
 pub mod summary;
 pub mod xdmf;
 

@@ -26,7 +26,7 @@ pub fn run_output_dir(out: Option<&Path>, scene: Option<&Path>) -> Option<PathBu
             let bytes = crate::input::read_bounded(p, crate::input::MAX_SCENE_BYTES).ok()?;
             String::from_utf8(bytes).ok()?
         }
-        None => crate::run::DEFAULT_SCENE.to_string(),
+        None => crate::scene::DEFAULT_SCENE.to_string(),
     };
     let file = crate::scene::validate::parse(crate::scene::text::strip_bom(&text), "").ok()?;
     Some(file.output.dir)

@@ -21,6 +21,7 @@
 use std::path::Path;
 use std::time::{Duration, Instant};
 
+pub use crate::solver::StageSeconds;
 use mpi::topology::SimpleCommunicator;
 use mpi::traits::{Communicator, CommunicatorCollectives};
 use serde::{Deserialize, Serialize};
@@ -172,26 +173,6 @@ impl PhaseTimer {
     pub fn seconds(&self) -> PhaseSeconds {
         PhaseSeconds::from_array(Phase::ALL.map(|p| self.elapsed(p).as_secs_f64()))
     }
-}
-
-/// The wall time and solver counts of one completed stage ([`RunSummary::stage_seconds`]);
-/// the counts are those of the run (or part of a run) that completed the stage.
-#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct StageSeconds {
-    /// Stage name.
-    pub stage: String,
-    /// Wall-clock seconds.
-    pub seconds: f64,
-    /// Converged load or time steps.
-    #[serde(default)]
-    pub steps: u32,
-    /// Newton iterations, of converged and of cut-back steps.
-    #[serde(default)]
-    pub newton_iterations: u32,
-    /// Krylov iterations of all linear solves.
-    #[serde(default)]
-    pub ksp_iterations: u64,
 }
 
 /// The run summary.

@@ -8,6 +8,7 @@
 pub mod dynamic;
 pub mod error;
 pub mod modal;
+pub mod output_spec;
 pub mod ranges;
 pub mod restraint;
 pub mod schema;
@@ -16,6 +17,9 @@ pub mod term;
 mod tests;
 pub mod text;
 pub mod validate;
+
+/// The embedded default scene (`cfrd run` without a scene file).
+pub const DEFAULT_SCENE: &str = include_str!("../../inputs/scenes/default_dam.yaml");
 
 pub use error::SceneError;
 pub use schema::SceneFile;

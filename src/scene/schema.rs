@@ -467,9 +467,9 @@ pub struct OutputSpec {
     pub placed_nodes: PlacedNodes,
     /// CSV tables and PNG plots of the seed's static outputs (Figs. 7–11: dam displacement,
     /// slab stresses and deflection, interface jumps, probe stress paths) written into the
-    /// output directory at the end of the run; see [`crate::profiles`]. Absent: not written.
+    /// output directory at the end of the run; see [`crate::post::profiles`]. Absent: not written.
     #[serde(default)]
-    pub profiles: Option<crate::profiles::ProfilesSpec>,
+    pub profiles: Option<crate::scene::output_spec::ProfilesSpec>,
     /// When to write `checkpoint.h5` into the output directory for `cfrd run --restart`:
     /// `stage` (at the end of completed stages, paced: [`crate::io::pacing`]), `step` or `none`. Default: `stage` for scenes
     /// with `stages`, `none` otherwise.

@@ -68,7 +68,7 @@ pub use model::mesh_cells;
 #[cfg(feature = "native")]
 pub use problem::Problem;
 #[cfg(feature = "native")]
-pub use report::{InterfaceCounts, LocalResults, NodeMotion, SolveReport, ELEMENT_STATE};
+pub use report::{InterfaceCounts, LocalResults, NodeMotion, SolveReport, StageSeconds, ELEMENT_STATE};
 #[cfg(feature = "native")]
 pub use state::{ProblemState, StageProgress};
 #[cfg(feature = "native")]

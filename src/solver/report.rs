@@ -39,16 +39,16 @@ pub struct SolveReport {
     pub multigrid_builds: u64,
     /// Wall-clock seconds of each completed stage, for the run summary.
     #[serde(default)]
-    pub stage_seconds: Vec<crate::io::summary::StageSeconds>,
+    pub stage_seconds: Vec<StageSeconds>,
     /// The crest's motion at every converged time step of the first dynamic stage
-    /// ([`crate::quake`], spec seismic §3.6): `[t, u_x, u_y, u_z, a_x, a_y, a_z, ag_x, ag_y,
+    /// ([`crate::post::quake`], spec seismic §3.6): `[t, u_x, u_y, u_z, a_x, a_y, a_z, ag_x, ag_y,
     /// ag_z]`, u relative to the base and to the state before the quake (m), a absolute and a_g
     /// the ground's (m/s²). Kept in step checkpoints, so a restarted run has the whole history.
     #[serde(default)]
     pub crest: Vec<[f64; 10]>,
     /// The probes' state at t = 0 of the first dynamic stage and at every converged time step
-    /// of it ([`crate::quake_probes`], seed Figs. 14, 18–20): the time (s), then the values of
-    /// each probe in the order of [`crate::quake_probes::probe_elements`]. Kept in step
+    /// of it ([`crate::post::quake_probes`], seed Figs. 14, 18–20): the time (s), then the values of
+    /// each probe in the order of [`crate::post::quake_probes::probe_elements`]. Kept in step
     /// checkpoints like [`SolveReport::crest`].
     #[serde(default)]
     pub probes: Vec<Vec<f64>>,
@@ -101,4 +101,24 @@ pub struct NodeMotion {
     pub velocity: Vec<[f64; 3]>,
     /// Absolute acceleration, relative plus ground (m/s²).
     pub acceleration: Vec<[f64; 3]>,
+}
+
+/// The wall time and solver counts of one completed stage, for the run summary;
+/// the counts are those of the run (or part of a run) that completed the stage.
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StageSeconds {
+    /// Stage name.
+    pub stage: String,
+    /// Wall-clock seconds.
+    pub seconds: f64,
+    /// Converged load or time steps.
+    #[serde(default)]
+    pub steps: u32,
+    /// Newton iterations, of converged and of cut-back steps.
+    #[serde(default)]
+    pub newton_iterations: u32,
+    /// Krylov iterations of all linear solves.
+    #[serde(default)]
+    pub ksp_iterations: u64,
 }

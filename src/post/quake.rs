@@ -5,7 +5,7 @@
 //! ground acceleration, spec seismic §3.6). Written by `cfrd run` after a scene with a dynamic
 //! stage: `quake_crest.csv`, `quake_crest.png` and `quake_summary.json`.
 
-use crate::io::compare::{open, stage_name, step_names};
+use crate::io::results_reader::{open, stage_name, step_names};
 use crate::plot::{Figure, Panel, Series};
 use crate::scene::Scene;
 use std::path::{Path, PathBuf};

@@ -1,7 +1,7 @@
 //! Accuracy against cost (`cfrd accuracy`, `scripts/accuracy_cost.sh`): the error of a run's
 //! seed-figure results against a reference run of the same dam, next to the run's wall time.
 //!
-//! Quantities (from each run's `output.profiles` tables, [`crate::profiles`]):
+//! Quantities (from each run's `output.profiles` tables, [`crate::post::profiles`]):
 //!
 //! * slab stress along the slope σ_s, along the axis σ_a and the deflection at the central
 //!   section after impoundment (seed Figs. 8, 9; `fig08_slab_stress.csv`): the largest
@@ -20,7 +20,7 @@
 //! The wall time is `total_seconds` of the run's `summary.json`.
 
 use crate::plot::{Figure, Panel, Series};
-use crate::profiles::{read_slab_csv, SlabTableRow};
+use crate::post::profiles::{read_slab_csv, SlabTableRow};
 use std::path::{Path, PathBuf};
 
 /// The state compared by the static study: the end of the schedule.

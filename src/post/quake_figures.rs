@@ -1,8 +1,8 @@
 //! The seed paper's dynamic outputs (seed Figs. 12–20, spec seismic §3.1 item 3 and §3.6) from
 //! the results of a run with an earthquake stage: the residual deformation (state at the end of
 //! the quake minus the state before it) of the dam section, the slab and the slab–cushion
-//! interface, and the time histories of the named probes ([`crate::profiles::Probe`]). CSV
-//! tables and PNG plots, written by `cfrd run` next to `quake_crest.csv` ([`crate::quake`]).
+//! interface, and the time histories of the named probes ([`crate::post::profiles::Probe`]). CSV
+//! tables and PNG plots, written by `cfrd run` next to `quake_crest.csv` ([`crate::post::quake`]).
 //!
 //! | output | seed figure | file |
 //! |---|---|---|
@@ -19,157 +19,27 @@
 //! The three interface tables `fig15/16/17_*.csv` hold the same rows (one per interface element).
 //!
 //! **Sampling.** The probe histories (Figs. 14, 18–20) are those of every time step of a run
-//! ([`crate::quake_probes`]); the residual state is that of the results steps before and after
+//! ([`crate::post::quake_probes`]); the residual state is that of the results steps before and after
 //! the quake, and histories drawn from results files alone are sampled at their results steps,
 //! every `output_every` time steps (`earthquake: { output_every: N }`), plus t = 0, the state
 //! before the quake (the end of the stage before it). Each history CSV states its sampling in a
 //! `#` comment line above the header.
 //!
-//! Conventions are those of [`crate::profiles`] (central section, slab frame, tension +,
+//! Conventions are those of [`crate::post::profiles`] (central section, slab frame, tension +,
 //! interface jump cushion relative to slab, δ_n > 0 opening, σ_n compression +).
 
-use crate::io::compare::{open, stage_name, step_names};
 use crate::mesh::Mesh;
 use crate::plot::{Figure, Panel, Series};
-use crate::profiles::{
+use crate::post::output::{csv_out, png_out};
+use crate::post::profiles::{
     body_nodes, centre, elements_with_prefix, elevation_groups, section_y, slab_profile, ProfilesSpec,
     StageFields,
 };
-use crate::quake_probes::{probe_elements, write_probe_figures, ProbeHistory, QuakeProbe};
+use crate::post::quake_fields::{read_quake_fields, residual, QuakeFields};
+use crate::post::quake_probes::{probe_elements, write_probe_figures, ProbeHistory, QuakeProbe};
 use crate::scene::Scene;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
-
-/// The fields of an earthquake stage as written to the results file.
-#[derive(Debug, Clone, PartialEq, Default)]
-pub struct QuakeFields {
-    /// Name of the dynamic stage.
-    pub stage: String,
-    /// Time steps between two results steps (the stage's `output_every`, 0: its end only).
-    pub output_every: u32,
-    /// Time step of the stage (s).
-    pub dt: f64,
-    /// The state before the quake (the last results step of the stage before).
-    pub before: StageFields,
-    /// Time in the stage (s) of each results step of the quake.
-    pub t: Vec<f64>,
-    /// The fields of each results step of the quake, in order; the last one is the state after
-    /// the quake when the stage completed.
-    pub steps: Vec<StageFields>,
-}
-
-impl QuakeFields {
-    /// The state after the quake (the last results step).
-    pub fn after(&self) -> &StageFields {
-        self.steps.last().unwrap_or(&self.before)
-    }
-
-    /// The sampling note of the history tables (module docs).
-    pub(crate) fn sampling(&self) -> String {
-        let every = match self.output_every {
-            0 => "at the stage's end only".to_string(),
-            n => format!(
-                "every {n} time step(s) ({} s where no step was cut back)",
-                n as f64 * self.dt
-            ),
-        };
-        format!(
-            "# sampled at the results steps of stage '{}': {every}; t = 0 is the state before the quake",
-            self.stage
-        )
-    }
-
-    /// Times with t = 0 (before the quake) first.
-    pub(crate) fn times(&self) -> impl Iterator<Item = f64> + '_ {
-        std::iter::once(0.0).chain(self.t.iter().copied())
-    }
-
-    /// States with the one before the quake first.
-    pub(crate) fn states(&self) -> impl Iterator<Item = &StageFields> + '_ {
-        std::iter::once(&self.before).chain(self.steps.iter())
-    }
-}
-
-/// Reads the first earthquake stage of the closed results files `h5s`, the parts of one run in
-/// the order they ran (one file for a run in one go). A step found again in a later part (a run
-/// killed after it and restarted from an earlier checkpoint) replaces the earlier part's steps
-/// from its time on. `None` when the scene has no dynamic stage after another stage, or the
-/// files lack the state before the quake or any step of it.
-pub fn read_quake_fields(scene: &Scene, h5s: &[PathBuf]) -> Result<Option<QuakeFields>, String> {
-    let Some(k) = scene.stages.iter().position(|s| s.dynamic.is_some()) else {
-        return Ok(None);
-    };
-    let Some(previous) = k.checked_sub(1).map(|p| scene.stages[p].name.as_str()) else {
-        return Ok(None);
-    };
-    let stage = &scene.stages[k];
-    let dynamic = stage.dynamic.as_ref().expect("a dynamic stage");
-    let dt = dynamic.dt();
-    let mut before = None;
-    let mut q = QuakeFields {
-        stage: stage.name.clone(),
-        output_every: dynamic.output_every,
-        dt,
-        ..Default::default()
-    };
-    for h5 in h5s {
-        let file = open(h5)?;
-        for name in step_names(&file, h5)? {
-            let g = file.group(&format!("/steps/{name}")).map_err(|e| e.to_string())?;
-            let this = stage_name(&g).unwrap_or_default();
-            if this == previous {
-                before = Some(StageFields::read(&g, h5, this)?);
-            } else if this == stage.name {
-                let time: f64 = g
-                    .attr("time")
-                    .and_then(|a| a.read_scalar())
-                    .map_err(|e| e.to_string())?;
-                let t = on_time_grid((time - k as f64) * dynamic.duration, dt);
-                while q.t.last().is_some_and(|&last| last >= t) {
-                    q.t.pop();
-                    q.steps.pop();
-                }
-                q.t.push(t);
-                q.steps.push(StageFields::read(&g, h5, this)?);
-            }
-        }
-    }
-    let Some(before) = before else {
-        return Ok(None);
-    };
-    q.before = before;
-    Ok((!q.steps.is_empty()).then_some(q))
-}
-
-/// `t` snapped to the nearest multiple of `dt` when within 1e-6·dt of it (a step's time is
-/// stored as a fraction of the stage).
-pub(crate) fn on_time_grid(t: f64, dt: f64) -> f64 {
-    let n = (t / dt).round();
-    if (t - n * dt).abs() <= 1e-6 * dt {
-        n * dt
-    } else {
-        t
-    }
-}
-
-/// `after − before` of every field (the residual state, spec seismic §3.1 item 3); a field
-/// missing from either is empty.
-pub fn residual(before: &StageFields, after: &StageFields) -> StageFields {
-    let diff = |a: &[f64], b: &[f64]| -> Vec<f64> {
-        if a.len() != b.len() {
-            return Vec::new();
-        }
-        a.iter().zip(b).map(|(x, y)| x - y).collect()
-    };
-    StageFields {
-        name: format!("{} - {}", after.name, before.name),
-        displacement: diff(&after.displacement, &before.displacement),
-        stress: diff(&after.stress, &before.stress),
-        interface_traction: diff(&after.interface_traction, &before.interface_traction),
-        interface_jump: diff(&after.interface_jump, &before.interface_jump),
-        interface_opening: diff(&after.interface_opening, &before.interface_opening),
-    }
-}
 
 /// A round magnification (1, 2 or 5 × 10ᵏ, at least 1) that draws a largest displacement of
 /// `umax` as about 5 % of `size`.
@@ -221,40 +91,6 @@ pub fn section_outline(mesh: &Mesh, spec: &ProfilesSpec) -> Vec<usize> {
         outline.push(first);
     }
     outline
-}
-
-/// Writes `text` as `dir/name` and records the path.
-pub(crate) fn csv_out(dir: &Path, files: &mut Vec<PathBuf>, name: &str, text: String) -> Result<(), String> {
-    let path = dir.join(name);
-    std::fs::write(&path, text).map_err(|e| format!("{}: {e}", path.display()))?;
-    files.push(path);
-    Ok(())
-}
-
-/// Saves `figure` as `dir/name` and records the path.
-pub(crate) fn png_out(
-    dir: &Path,
-    files: &mut Vec<PathBuf>,
-    name: &str,
-    figure: Figure,
-) -> Result<(), String> {
-    let path = dir.join(name);
-    figure.save_png(&path).map_err(|e| e.to_string())?;
-    files.push(path);
-    Ok(())
-}
-
-/// A probe name made safe for a file name.
-pub(crate) fn safe_name(name: &str) -> String {
-    name.chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() || c == '-' {
-                c
-            } else {
-                '_'
-            }
-        })
-        .collect()
 }
 
 /// Fig. 12: the section outline before and after the quake.
@@ -492,7 +328,7 @@ fn slip_vectors(mesh: &Mesh, iface: &[usize], res: &StageFields) -> Figure {
         .columns(1)
 }
 
-/// The probes' elements (`quake_probes.csv`, [`crate::quake_probes::probe_elements`]).
+/// The probes' elements (`quake_probes.csv`, [`crate::post::quake_probes::probe_elements`]).
 fn write_probe_table(
     mesh: &Mesh,
     spec: &ProfilesSpec,

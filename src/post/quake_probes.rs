@@ -12,10 +12,11 @@
 
 use crate::mesh::Mesh;
 use crate::plot::{Figure, Panel, Series};
-use crate::profiles::{
+use crate::post::output::{csv_out, png_out, safe_name};
+use crate::post::profiles::{
     centre, probe_element, slab_frame, stress_tensor, ProbeElement, ProfilesSpec, StageFields,
 };
-use crate::quake_figures::{csv_out, png_out, safe_name, QuakeFields};
+use crate::post::quake_fields::QuakeFields;
 use crate::solver::ELEMENT_STATE;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
