@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Accuracy versus cost on the seed dam (issue 21): runs the coarse hyperbolic seed scene
+# Accuracy versus cost on the seed dam: runs the coarse hyperbolic seed scene
 # (inputs/scenes/seed_coarse_hyperbolic.yaml, GP rockfill, slab in three stages, impoundment)
 # on 2 ranks with one setting changed at a time from the scene's own:
 #   load steps per stage   1, 2, 4, 8 (the scene's), 16
@@ -17,7 +17,7 @@
 # min on 2 cores) at the scene's settings is the reference of the coarse runs with the scene's
 # settings, 16 load steps and the Gauss rule (the fine mesh takes hours: not run here):
 #   scripts/figures/mesh/accuracy_cost.csv, scripts/figures/mesh/accuracy_cost.png
-# With QUAKE=1 the time integration of the seed quake (issue 18) is studied instead, on the
+# With QUAKE=1 the time integration of the seed quake is studied instead, on the
 # coarse Mohr-Coulomb quake scene (inputs/scenes/seed_coarse_mohr_coulomb_quake.yaml, the 20 s
 # record; 10-40 min a run): time steps 0.02 and 0.01 s (the scene's), lumped mass and HHT-alpha
 # (alpha = -0.1) at 0.01 s, against the reference at 0.005 s (consistent mass, Newmark); fields

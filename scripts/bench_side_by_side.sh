@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Side-by-side benchmark (issue 20): this working tree's build against a base commit's build on
+# Side-by-side benchmark: this working tree's build against a base commit's build on
 # the same machine in the same session, in alternating pairs, so that machine-to-machine and
 # hour-to-hour differences cancel in the ratio. Each run solves SCENE on RANKS ranks; the wall
 # time is `total_seconds` of its summary.json (read to results, what a user waits for). The

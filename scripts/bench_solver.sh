@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Solver benchmark (issue 2): the seed-like dam mesh at three sizes up to 1 million DOFs, on 1 and
+# Solver benchmark: the seed-like dam mesh at three sizes up to 1 million DOFs, on 1 and
 # 2 ranks; static linear-elastic solve with the default solver (CG + GAMG with rigid-body modes,
 # rtol 1e-10). Writes the markdown table to scripts/bench_solver.md (shown in the README).
 # Usage: bash scripts/bench_solver.sh [DOFS...]   (default: 100000 300000 1000000)

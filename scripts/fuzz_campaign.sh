@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Fuzz campaign over cfrd's input readers (issue 23): every target of tests/fuzz runs RUNS
+# Fuzz campaign over cfrd's input readers: every target of tests/fuzz runs RUNS
 # inputs under libFuzzer (coverage-guided, AddressSanitizer, debug assertions; nightly
 # toolchain), seeded from the repository's inputs, its kept corpus and tests/fuzz/seeds. Then
 # the corpus is minimized into tests/fuzz/corpus/<target> (libFuzzer's merge gives the edges

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The fine seed dam's interface-model comparison (issue 20, acceptance 5): draws the figures of the
+# The fine seed dam's interface-model comparison: draws the figures of the
 # fine seed scenes run in parts, each with its own scripts/run_in_parts.sh (they take an hour or
 # more each on 2 cores, so they are not started here):
 #   scripts/run_in_parts.sh inputs/scenes/seed_fine_<model>.yaml FINE_DIR/<model> 2

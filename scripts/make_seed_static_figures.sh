@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Seed static study on the coarse mesh (issue 4, acceptance 2 and 5): runs the three coarse seed
+# Seed static study on the coarse mesh: runs the three coarse seed
 # scenes (hyperbolic, Mohr-Coulomb and GP slab-cushion interface) through construction and
 # impoundment on 2 ranks and on 1 rank, compares the 1- and 2-rank results field by field, and
 # makes the figures and tables the README shows, kept in scripts/figures/:

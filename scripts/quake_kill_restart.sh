@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# A seed quake killed twice and restarted (issue 18, acceptance 4): from a post-impoundment
+# A seed quake killed twice and restarted: from a post-impoundment
 # checkpoint, runs the earthquake once uninterrupted and once killed (SIGKILL to mpirun and the
 # ranks) after KILL_1 and again KILL_2 seconds, each time restarted from the step checkpoint
 # the killed part left, and compares the last parts' results with `cfrd compare --tolerance 0`.

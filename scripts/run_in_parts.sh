@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Runs a long staged scene in parts (issue 4, acceptance 5: the fine seed mesh takes longer than a
-# working session or a cluster job's time limit). Every part is a `cfrd run` in OUT/part_<k>;
+# Runs a long staged scene in parts (for runs longer than a working session or a cluster
+# job's time limit). Every part is a `cfrd run` in OUT/part_<k>;
 # when a part stops before the end (killed, out of time), calling this script again with the
 # same arguments restarts from the newest checkpoint (`--restart OUT/part_<k>/checkpoint.h5`,
 # written at the end of stages, paced so that writing costs at most 2.5 % of the run) into OUT/part_<k+1>. A restarted run gives the same results,

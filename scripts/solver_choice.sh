@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # The seed scenes with the canonical LU (their default: the whole placed system factored on every
 # rank) against the distributed LU (MUMPS over all ranks, `solver.linear_solver:
-# distributed_lu`), side by side in alternating runs on the same machine (issue 20, acceptance
-# 1): wall time, Newton iterations, cut-backs and peak memory per rank of each run, and the
+# distributed_lu`), side by side in alternating runs on the same machine:
+# wall time, Newton iterations, cut-backs and peak memory per rank of each run, and the
 # largest difference of the slab table at the central section (seed Figs. 8, 9:
-# fig08_slab_stress.csv) between the two solvers, which the issue bounds by 0.02 MPa and 0.1 cm.
+# fig08_slab_stress.csv) between the two solvers (the project allows 0.02 MPa and 0.1 cm).
 #
 # Usage: scripts/solver_choice.sh RUN_DIR [RANKS] [SCENE...]
 #   RANKS 2; SCENE default: the three coarse seed scenes (static scenes: a copy with the solver

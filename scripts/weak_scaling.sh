@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# One stage of a seed scene rerun from a stage checkpoint on 1 and on 2 ranks (issue 20,
-# acceptance 3: the weak-scaling table of one fill stage and of the impoundment over mesh sizes).
+# One stage of a seed scene rerun from a stage checkpoint on 1 and on 2 ranks (the
+# weak-scaling table of one fill stage and of the impoundment over mesh sizes).
 # Each run restarts from CHECKPOINT (written at the end of the stage before) and stops after one
 # stage (`--stop-after-stage +1`); a checkpoint written on any rank count restarts on any other.
 # Prints one CSV row per run: label, ranks, mesh DOFs, stage, wall seconds of the stage, Newton
