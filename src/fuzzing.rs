@@ -49,8 +49,7 @@ impl Outcome {
 
 /// Most nodes of a generated mesh (`mesh.box`, `mesh.dam`, `mesh.cfrd`) that [`scene`] builds:
 /// each input then runs in milliseconds. Larger meshes are legal up to
-/// [`crate::mesh::generate::MAX_GENERATED_NODES`]; their build time is measured in
-/// [`crate::performance`], not here.
+/// [`crate::mesh::generate::MAX_GENERATED_NODES`].
 pub const SCENE_MAX_NODES: u128 = 20_000;
 
 /// Folder that relative paths of a fuzzed scene are taken from: `inputs/scenes` of the source

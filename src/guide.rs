@@ -211,7 +211,7 @@
 //! PETSc's secant line search (`secant`) evaluates three. On the coarse
 //! seed quake that made the quake 1.54 times faster and a window of the medium quake 1.68
 //! times (side by side); the whole medium GP quake took 52.7 min on 2 ranks alone on the
-//! machine, against 85.7 min with the secant line search in an earlier run. Residual slab
+//! machine. Residual slab
 //! stresses stay within 1 % of the secant run's ([`crate::performance`]). The static stages'
 //! default, `solver.line_search: residual_secant`, takes the full step where it lowers the
 //! residual and the secant of the residual vectors puts the minimum near it (one evaluation),
@@ -306,10 +306,9 @@
 //!   diagonal. The interface, joint and slab nodes are factored (SuperLU_DIST over the ranks), the
 //!   fill gets algebraic multigrid (GAMG), one after the other ([`crate::linalg::reduced_amg`]).
 //!   Every rank holds only its share, so memory grows with the mesh and falls with the ranks:
-//!   on the medium seed mesh, whose scenes use it, about 0.4 of the canonical LU's memory per
-//!   rank (0.41 with SuperLU_DIST on the structure, 0.37–0.39 with MUMPS), in 0.59–0.64 of
-//!   its time ([`crate::performance`], "Linear solvers on the seed
-//!   dam"). Its results agree with the canonical LU's to the Newton tolerance; two runs on the
+//!   on the medium seed mesh, whose scenes use it, under half the canonical LU's memory per
+//!   rank and time (medium hyperbolic scene: 291.0 s and 269 MiB against 614.3 s and 597 MiB,
+//!   [`crate::performance`], "Linear solvers on the seed dam"). Its results agree with the canonical LU's to the Newton tolerance; two runs on the
 //!   same rank count give the same bits, other rank counts other bits. Each rank runs one
 //!   OpenMP thread inside SuperLU_DIST unless `OMP_NUM_THREADS` is set (one thread per core
 //!   on every rank would compete for the cores of the other ranks). With more ranks than
@@ -335,7 +334,7 @@
 //!   under GMRES; the subdomain factors are reused the same way): no rank holds more than its
 //!   subdomain's factors, at the price of more GMRES iterations; on the medium mesh's first
 //!   17 stages it took 1.9 times the canonical LU's time on 2 ranks, and more memory
-//!   ([`crate::performance`], "Linear solvers on the seed dam").
+//!   ([`crate::performance`], "Tried and rejected").
 //!
 //! In a dynamic stage both direct solvers change their inner solver: the Jacobian of a time
 //! step is dominated by the mass term, and an incomplete LU of the current Jacobian (ILU(0),

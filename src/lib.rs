@@ -1,9 +1,11 @@
 //! # cfrd: parallel finite-element analysis of concrete-faced rockfill dams
 //!
-//! Architecture (one concept per file; `mod.rs` only lists and re-exports):
+//! The rooms and the arrows between them: [`architecture`]. One concept per file; `mod.rs`
+//! only lists and re-exports.
 //!
 //! | module | what it holds |
 //! |---|---|
+//! | [`architecture`] | the map of the rooms and their one-way arrows (documentation only) |
 //! | [`guide`] | user guide (documentation only): scene format, command line, restart, runs in parts, outputs, exit codes, PETSc options |
 //! | [`verification`] | what has been checked (documentation only): solver checks, material points, the seed dam's Figs. 7–11 on three meshes |
 //! | [`performance`] | measured run times, memory, Newton and solver figures, each with its commit and command (documentation only) |
@@ -19,7 +21,7 @@
 //! | `linalg` | PETSc safe layer (feature `native`) |
 //! | `io` | parallel HDF5 results, XDMF, run summary (feature `native`) |
 //! | `parallel` | MPI start-up, abort-on-panic hook, collective decisions (feature `native`) |
-//! | `run` | the `cfrd run` pipeline (feature `native`) |
+//! | `run` | the `cfrd run` pipeline: the schedule and its observers (feature `native`) |
 //! | [`point`] | `cfrd point`: material-point tests from YAML, CSV and PNG output |
 //! | [`plot`] | PNG line plots (figures of point tests and dam outputs) |
 //! | [`post`] | post-processing: the seed's static and dynamic figures and tables, accuracy against a reference |
@@ -30,6 +32,7 @@
 //! `native` feature; the constitutive library, the mesh code and the element kernels build
 //! and test without it (`cargo test --no-default-features --lib`).
 
+pub mod architecture;
 pub mod conventions;
 pub mod element;
 pub mod error;

@@ -441,7 +441,7 @@
 //! `bash scripts/accuracy_cost.sh RUNS` (build of 39e961d): the coarse hyperbolic seed scene on
 //! 2 ranks with one setting changed at a time, against a reference with the load path at its
 //! most accurate (16 load steps per stage, STOL 1e-6, Newton tolerance 1e-6; 124 s). Errors
-//! ([`crate::accuracy`]): the largest difference over the slab points of the central section
+//! ([`crate::post::accuracy`]): the largest difference over the slab points of the central section
 //! after impoundment, relative to the reference's largest magnitude; the crest settlement's
 //! relative difference. Table `scripts/figures/accuracy_cost.csv`.
 //!

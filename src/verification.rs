@@ -155,7 +155,7 @@
 //! displacement, slab stresses and deflection, the σn–τ path of interface element I-A at
 //! el. 2711 m, interface jumps and opening), kept as `scripts/figures/seed_{static,medium,fine}_<model>_fig*.png`.
 //! The tables give the slab at the central section: stresses in MPa (tension +) along the
-//! slope σ_s and the axis σ_a, deflection in cm (towards the dam +) ([`crate::profiles`]); the GP
+//! slope σ_s and the axis σ_a, deflection in cm (towards the dam +) ([`crate::post::profiles`]); the GP
 //! column is the bounded default reading of the GP interface ([known defects](#known-defects)).
 //!
 //! ### Coarse mesh: the three interface models

@@ -465,7 +465,7 @@ const PROBES: &str = "{ probes: [ { name: I-B, elevation: 2809.0, at: left_bank 
 
 /// The probe histories of runs `a` and `b` of a quake of `duration` s at Δt = 0.01 s are the
 /// same byte for byte, with a row at t = 0 and at every time step to the end (a step cut back
-/// adds rows; [`cfrd::quake_probes`]).
+/// adds rows; [`cfrd::post::quake_probes`]).
 fn check_probe_histories(a: &Path, b: &Path, duration: f64) {
     let steps = (duration / 0.01).round() as usize;
     for name in [
@@ -498,7 +498,7 @@ fn check_probe_histories(a: &Path, b: &Path, duration: f64) {
     }
 }
 
-/// The crest history of `quake_crest.csv` ([`cfrd::quake`]) of a quake of `duration` s at
+/// The crest history of `quake_crest.csv` ([`cfrd::post::quake`]) of a quake of `duration` s at
 /// Δt = 0.01 s with fields every `every` steps: a row at t = 0 and at every time step to the
 /// end, so its peak acceleration is at least that of the results steps alone.
 fn check_crest_history(text: &str, duration: f64, every: usize) {

@@ -1,4 +1,4 @@
-//! The seed's dynamic figures (seed Figs. 12–20, spec seismic §3.6; `cfrd::quake_figures`)
+//! The seed's dynamic figures (seed Figs. 12–20, spec seismic §3.6; `cfrd::post::quake_figures`)
 //! from a short quake on 2 ranks: the small generated dam of `tests/cfrd_dam.rs` (elastic fill,
 //! hyperbolic interface; the canonical LU, whose results do not depend on how the run was
 //! split) through its schedule, then 0.5 s cut from the committed seed record.

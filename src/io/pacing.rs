@@ -3,7 +3,7 @@
 //!
 //! The copy grows with every stage, so writing at every stage costs work quadratic in the
 //! number of stages: on the fine seed mesh (95 stages, 1.6 GB of results) the copies took
-//! 3.4–3.8 s each by stage 55 (0.9 GB) and some 290 of the run's 2,550 s in all
+//! 3.4–3.8 s each by stage 55 (0.9 GB), 79 s by stage 55 in all
 //! ([`crate::performance`], "The fine run"). With stage checkpoints (`output.checkpoint:
 //! stage`, the default of staged scenes) the writes at a stage's end are therefore paced: they
 //! happen once the run has computed [`COMPUTE_PER_WRITE`] times as long as the last such
@@ -13,10 +13,8 @@
 //! since its last checkpoint, [`COMPUTE_PER_WRITE`] times as long as that checkpoint's writes
 //! took (on the fine seed mesh, whose last copies take some 4 s, about 3 min).
 //!
-//! The ratio was 19 (5 %) until the fine hyperbolic run's output took 102–105 s of its
-//! 1,814–1,829 s, most of it these copies, while its solving missed the 30 min of issue 20 by
-//! 1–2 %; 39 halves that share and doubles the time a kill may cost
-//! ([`crate::performance`], "The fine run").
+//! 39 rather than 19: on the fine hyperbolic run 19 left 102.0–104.6 s of output, 39 leaves
+//! 76.4 s; it doubles the time a kill may cost ([`crate::performance`], "The fine run").
 
 use crate::parallel::max_f64;
 use mpi::topology::SimpleCommunicator;

@@ -30,6 +30,7 @@
 use crate::element::interface_frame::{FrameAxes, LocalFrame};
 use crate::mesh::Mesh;
 use crate::plot::{Figure, Panel, PlotError, Series};
+use crate::post::output::{csv_out, png_out, safe_name, OutputError};
 pub use crate::scene::output_spec::{Probe, ProbeAt, ProbeElement, ProfilesSpec};
 use nalgebra::{Matrix3, Vector3};
 use std::fmt::Write as _;
@@ -561,15 +562,31 @@ pub fn overlay_slab_profiles(
     Ok(tables.iter().map(|(_, rows)| rows.len()).sum())
 }
 
-/// Writes the CSV `name` into `dir` and records it in `files`.
-fn csv_out(dir: &Path, files: &mut Vec<PathBuf>, name: &str, text: String) -> Result<(), ProfilesError> {
-    let path = dir.join(name);
-    crate::input::write_replacing(&path, text.as_bytes()).map_err(|source| ProfilesError::Io {
-        path: path.clone(),
-        source,
-    })?;
-    files.push(path);
-    Ok(())
+impl From<OutputError> for ProfilesError {
+    fn from(e: OutputError) -> Self {
+        match e {
+            OutputError::Io { path, source } => ProfilesError::Io { path, source },
+            OutputError::Plot(p) => ProfilesError::Plot(p),
+        }
+    }
+}
+
+/// The states the static figures show: the end of construction and, when the run has one,
+/// the state after impoundment (labels and stage indices).
+fn figure_states(
+    spec: &ProfilesSpec,
+    stages: &[StageFields],
+) -> Result<Vec<(&'static str, usize)>, ProfilesError> {
+    let last = stages
+        .len()
+        .checked_sub(1)
+        .ok_or_else(|| ProfilesError::Missing("no stage results".into()))?;
+    let end = construction_end(spec, stages).unwrap_or(last);
+    let mut states = vec![("end of construction", end)];
+    if end != last {
+        states.push(("after impoundment", last));
+    }
+    Ok(states)
 }
 
 /// Writes the CSV tables and PNG plots of the module docs into `dir`; returns the files written.
@@ -580,18 +597,26 @@ pub fn write_profiles(
     stages: &[StageFields],
     dir: &Path,
 ) -> Result<Vec<PathBuf>, ProfilesError> {
-    let last = stages
-        .len()
-        .checked_sub(1)
-        .ok_or_else(|| ProfilesError::Missing("no stage results".into()))?;
-    let end = construction_end(spec, stages).unwrap_or(last);
-    let mut states = vec![("end of construction", end)];
-    if end != last {
-        states.push(("after impoundment", last));
-    }
+    let states = figure_states(spec, stages)?;
     let mut files = Vec::new();
+    fig07(mesh, spec, stages, &states, dir, &mut files)?;
+    figs08_09(mesh, spec, stages, &states, dir, &mut files)?;
+    fig11(mesh, spec, stages.last().expect("a stage"), dir, &mut files)?;
+    for probe in &spec.probes {
+        fig10(mesh, spec, probe, stages, dir, &mut files)?;
+    }
+    Ok(files)
+}
 
-    // Fig. 7
+/// Fig. 7: settlement and horizontal displacement on the crest-centre vertical.
+fn fig07(
+    mesh: &Mesh,
+    spec: &ProfilesSpec,
+    stages: &[StageFields],
+    states: &[(&str, usize)],
+    dir: &Path,
+    files: &mut Vec<PathBuf>,
+) -> Result<(), ProfilesError> {
     let mut csv = String::from("state,z_m,ux_m,uz_m\n");
     let mut p_set = Panel::new(
         "Settlement on the crest-centre vertical",
@@ -599,7 +624,7 @@ pub fn write_profiles(
         "z (m)",
     );
     let mut p_hor = Panel::new("Horizontal displacement (x)", "u_x (m)", "z (m)");
-    for (label, k) in &states {
+    for (label, k) in states {
         let prof = axis_profile(mesh, spec, &stages[*k]);
         for (z, ux, uz) in &prof {
             let _ = writeln!(csv, "{label},{z},{ux},{uz}");
@@ -607,15 +632,23 @@ pub fn write_profiles(
         p_set.push(Series::line(*label, prof.iter().map(|r| (-r.2, r.0)).collect()));
         p_hor.push(Series::line(*label, prof.iter().map(|r| (r.1, r.0)).collect()));
     }
-    csv_out(dir, &mut files, "fig07_dam_displacement.csv", csv)?;
-    let png = dir.join("fig07_dam_displacement.png");
-    Figure::new("Dam displacement at the central section (seed Fig. 7)")
+    csv_out(dir, files, "fig07_dam_displacement.csv", csv)?;
+    let figure = Figure::new("Dam displacement at the central section (seed Fig. 7)")
         .with(p_set)
-        .with(p_hor)
-        .save_png(&png)?;
-    files.push(png);
+        .with(p_hor);
+    png_out(dir, files, "fig07_dam_displacement.png", figure)?;
+    Ok(())
+}
 
-    // Figs. 8 and 9
+/// Figs. 8 and 9: slab stresses along the slope and the axis, and the slab's deflection.
+fn figs08_09(
+    mesh: &Mesh,
+    spec: &ProfilesSpec,
+    stages: &[StageFields],
+    states: &[(&str, usize)],
+    dir: &Path,
+    files: &mut Vec<PathBuf>,
+) -> Result<(), ProfilesError> {
     let mut csv = String::from("state,z_m,sigma_slope_Pa,sigma_axis_Pa,deflection_m\n");
     let mut p_s = Panel::new(
         "Slab stress along the slope (tension +)",
@@ -628,7 +661,7 @@ pub fn write_profiles(
         "z (m)",
     );
     let mut p_d = Panel::new("Slab deflection (towards the dam +)", "deflection (cm)", "z (m)");
-    for (label, k) in &states {
+    for (label, k) in states {
         let prof = slab_profile(mesh, spec, &stages[*k]);
         for r in &prof {
             let _ = writeln!(
@@ -637,122 +670,105 @@ pub fn write_profiles(
                 r.z, r.sigma_slope, r.sigma_axis, r.deflection
             );
         }
-        p_s.push(Series::line(
-            *label,
-            prof.iter().map(|r| (r.sigma_slope / 1e6, r.z)).collect(),
-        ));
-        p_a.push(Series::line(
-            *label,
-            prof.iter().map(|r| (r.sigma_axis / 1e6, r.z)).collect(),
-        ));
-        p_d.push(Series::line(
-            *label,
-            prof.iter().map(|r| (r.deflection * 100.0, r.z)).collect(),
-        ));
+        let line = |f: fn(&SlabRow) -> f64| Series::line(*label, prof.iter().map(|r| (f(r), r.z)).collect());
+        p_s.push(line(|r| r.sigma_slope / 1e6));
+        p_a.push(line(|r| r.sigma_axis / 1e6));
+        p_d.push(line(|r| r.deflection * 100.0));
     }
-    csv_out(dir, &mut files, "fig08_slab_stress.csv", csv.clone())?;
-    csv_out(dir, &mut files, "fig09_slab_deflection.csv", csv)?;
-    let png = dir.join("fig08_slab_stress.png");
-    Figure::new("Slab stresses at the central section (seed Fig. 8)")
+    csv_out(dir, files, "fig08_slab_stress.csv", csv.clone())?;
+    csv_out(dir, files, "fig09_slab_deflection.csv", csv)?;
+    let stress = Figure::new("Slab stresses at the central section (seed Fig. 8)")
         .with(p_s)
-        .with(p_a)
-        .save_png(&png)?;
-    files.push(png);
-    let png = dir.join("fig09_slab_deflection.png");
-    Figure::new("Slab deflection at the central section (seed Fig. 9)")
+        .with(p_a);
+    png_out(dir, files, "fig08_slab_stress.png", stress)?;
+    let deflection = Figure::new("Slab deflection at the central section (seed Fig. 9)")
         .with(p_d)
-        .columns(1)
-        .save_png(&png)?;
-    files.push(png);
+        .columns(1);
+    png_out(dir, files, "fig09_slab_deflection.png", deflection)?;
+    Ok(())
+}
 
-    // Fig. 11
-    let prof = interface_profile(mesh, spec, &stages[last]);
-    if !prof.is_empty() {
-        let mut csv =
-            String::from("z_m,delta_s_m,delta_a_m,delta_n_m,tau_s_Pa,tau_a_Pa,sigma_n_Pa,opening_m\n");
-        for r in &prof {
-            let _ = writeln!(
-                csv,
-                "{},{},{},{},{},{},{},{}",
-                r.z, r.jump[0], r.jump[1], r.jump[2], r.tau[0], r.tau[1], r.sigma_n, r.opening
-            );
-        }
-        csv_out(dir, &mut files, "fig11_interface.csv", csv)?;
-        let png = dir.join("fig11_interface.png");
-        Figure::new(format!(
-            "Interface at the central section, stage '{}' (seed Fig. 11)",
-            stages[last].name
-        ))
+/// Fig. 11: the interface's jumps and opening at the central section after the last stage.
+fn fig11(
+    mesh: &Mesh,
+    spec: &ProfilesSpec,
+    last: &StageFields,
+    dir: &Path,
+    files: &mut Vec<PathBuf>,
+) -> Result<(), ProfilesError> {
+    let prof = interface_profile(mesh, spec, last);
+    if prof.is_empty() {
+        return Ok(());
+    }
+    let mut csv = String::from("z_m,delta_s_m,delta_a_m,delta_n_m,tau_s_Pa,tau_a_Pa,sigma_n_Pa,opening_m\n");
+    for r in &prof {
+        let _ = writeln!(
+            csv,
+            "{},{},{},{},{},{},{},{}",
+            r.z, r.jump[0], r.jump[1], r.jump[2], r.tau[0], r.tau[1], r.sigma_n, r.opening
+        );
+    }
+    csv_out(dir, files, "fig11_interface.csv", csv)?;
+    let line = |name: &str, f: fn(&InterfaceRow) -> f64| {
+        Series::line(name, prof.iter().map(|r| (f(r) * 1e3, r.z)).collect())
+    };
+    let figure = Figure::new(format!(
+        "Interface at the central section, stage '{}' (seed Fig. 11)",
+        last.name
+    ))
+    .with(
+        Panel::new("Normal jump (opening +) and opening", "mm", "z (m)")
+            .with(line("delta_n", |r| r.jump[2]))
+            .with(line("opening", |r| r.opening)),
+    )
+    .with(
+        Panel::new("Shear jump (cushion relative to slab)", "mm", "z (m)")
+            .with(line("delta_s (up-slope)", |r| r.jump[0]))
+            .with(line("delta_a (axis)", |r| r.jump[1])),
+    );
+    png_out(dir, files, "fig11_interface.png", figure)?;
+    Ok(())
+}
+
+/// Fig. 10: the stress path and the shear displacement against the stress ratio of a probe
+/// interface element through the stages (nothing when the probe finds no element).
+fn fig10(
+    mesh: &Mesh,
+    spec: &ProfilesSpec,
+    probe: &Probe,
+    stages: &[StageFields],
+    dir: &Path,
+    files: &mut Vec<PathBuf>,
+) -> Result<(), ProfilesError> {
+    let Some(hist) = probe_history(mesh, spec, probe, stages) else {
+        return Ok(());
+    };
+    let mut csv = String::from("stage,sigma_n_Pa,tau_Pa,delta_s_m,tau_over_sigma_n\n");
+    for h in &hist {
+        let _ = writeln!(csv, "{},{},{},{},{}", h.stage, h.sigma_n, h.tau, h.slip, h.ratio);
+    }
+    let safe = safe_name(&probe.name);
+    csv_out(dir, files, &format!("fig10_probe_{safe}.csv"), csv)?;
+    let figure = Figure::new(format!("Interface element {} (seed Fig. 10)", probe.name))
         .with(
-            Panel::new("Normal jump (opening +) and opening", "mm", "z (m)")
-                .with(Series::line(
-                    "delta_n",
-                    prof.iter().map(|r| (r.jump[2] * 1e3, r.z)).collect(),
-                ))
-                .with(Series::line(
-                    "opening",
-                    prof.iter().map(|r| (r.opening * 1e3, r.z)).collect(),
-                )),
+            Panel::new("Stress path", "sigma_n (kPa)", "tau (kPa)").with(Series::line(
+                "",
+                hist.iter().map(|h| (h.sigma_n / 1e3, h.tau / 1e3)).collect(),
+            )),
         )
         .with(
-            Panel::new("Shear jump (cushion relative to slab)", "mm", "z (m)")
-                .with(Series::line(
-                    "delta_s (up-slope)",
-                    prof.iter().map(|r| (r.jump[0] * 1e3, r.z)).collect(),
-                ))
-                .with(Series::line(
-                    "delta_a (axis)",
-                    prof.iter().map(|r| (r.jump[1] * 1e3, r.z)).collect(),
-                )),
-        )
-        .save_png(&png)?;
-        files.push(png);
-    }
-
-    // Fig. 10
-    for probe in &spec.probes {
-        let Some(hist) = probe_history(mesh, spec, probe, stages) else {
-            continue;
-        };
-        let mut csv = String::from("stage,sigma_n_Pa,tau_Pa,delta_s_m,tau_over_sigma_n\n");
-        for h in &hist {
-            let _ = writeln!(csv, "{},{},{},{},{}", h.stage, h.sigma_n, h.tau, h.slip, h.ratio);
-        }
-        let safe: String = probe
-            .name
-            .chars()
-            .map(|c| {
-                if c.is_ascii_alphanumeric() || c == '-' {
-                    c
-                } else {
-                    '_'
-                }
-            })
-            .collect();
-        csv_out(dir, &mut files, &format!("fig10_probe_{safe}.csv"), csv)?;
-        let png = dir.join(format!("fig10_probe_{safe}.png"));
-        Figure::new(format!("Interface element {} (seed Fig. 10)", probe.name))
-            .with(
-                Panel::new("Stress path", "sigma_n (kPa)", "tau (kPa)").with(Series::line(
-                    "",
-                    hist.iter().map(|h| (h.sigma_n / 1e3, h.tau / 1e3)).collect(),
-                )),
+            Panel::new(
+                "Shear displacement vs stress ratio",
+                "tau / sigma_n",
+                "delta_s (mm)",
             )
-            .with(
-                Panel::new(
-                    "Shear displacement vs stress ratio",
-                    "tau / sigma_n",
-                    "delta_s (mm)",
-                )
-                .with(Series::line(
-                    "",
-                    hist.iter().map(|h| (h.ratio, h.slip * 1e3)).collect(),
-                )),
-            )
-            .save_png(&png)?;
-        files.push(png);
-    }
-    Ok(files)
+            .with(Series::line(
+                "",
+                hist.iter().map(|h| (h.ratio, h.slip * 1e3)).collect(),
+            )),
+        );
+    png_out(dir, files, &format!("fig10_probe_{safe}.png"), figure)?;
+    Ok(())
 }
 
 #[cfg(test)]

@@ -141,7 +141,8 @@ fn fig12(
     let fig = Figure::new("Dam outline before and after the earthquake (seed Fig. 12)")
         .with(panel)
         .columns(1);
-    png_out(dir, files, "fig12_outline.png", fig)
+    png_out(dir, files, "fig12_outline.png", fig)?;
+    Ok(())
 }
 
 /// Fig. 13: slab profiles before, after and induced by the residual deformation.
@@ -189,7 +190,8 @@ fn fig13(
     for p in panels {
         fig.push(p);
     }
-    png_out(dir, files, "fig13_residual_slab.png", fig.columns(3))
+    png_out(dir, files, "fig13_residual_slab.png", fig.columns(3))?;
+    Ok(())
 }
 
 /// Fig. 14: stress history of a slab probe element `e`.
@@ -256,7 +258,8 @@ fn figs15_17(
         "opening (mm)",
         |e| after.interface_opening[e] * 1e3,
     );
-    png_out(dir, files, "fig17_interface_opening.png", fig17)
+    png_out(dir, files, "fig17_interface_opening.png", fig17)?;
+    Ok(())
 }
 
 /// At most 8 elevation rows of `elements` (every k-th row, the top one always included).
@@ -356,7 +359,8 @@ fn write_probe_table(
             c[2]
         );
     }
-    csv_out(dir, files, "quake_probes.csv", csv)
+    csv_out(dir, files, "quake_probes.csv", csv)?;
+    Ok(())
 }
 
 /// Writes the tables and plots of the module docs into `dir` from the closed results files `h5s`

@@ -219,7 +219,8 @@ fn fig14<'a>(
                 .with(Series::line("", a)),
         )
         .columns(1);
-    png_out(dir, files, &format!("fig14_slab_probe_{safe}.png"), fig)
+    png_out(dir, files, &format!("fig14_slab_probe_{safe}.png"), fig)?;
+    Ok(())
 }
 
 /// Figs. 18–19: stress and displacement history of an interface probe.
@@ -263,7 +264,8 @@ fn fig18<'a>(
     )
     .with(Panel::new("Opening", "t (s)", "mm").with(Series::line("", op)))
     .columns(1);
-    png_out(dir, files, &format!("fig18_interface_probe_{safe}.png"), fig)
+    png_out(dir, files, &format!("fig18_interface_probe_{safe}.png"), fig)?;
+    Ok(())
 }
 
 /// Fig. 20: opening history of every interface probe (`openings`: name, column of its opening
@@ -292,5 +294,6 @@ fn fig20(
     let fig = Figure::new("Opening history of the interface probes (seed Fig. 20)")
         .with(panel)
         .columns(1);
-    png_out(dir, files, "fig20_opening.png", fig)
+    png_out(dir, files, "fig20_opening.png", fig)?;
+    Ok(())
 }

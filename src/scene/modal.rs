@@ -1,6 +1,6 @@
 //! Modal analysis of a stage's start state (spec seismic §4 items 4 and 9): the lowest
 //! natural frequencies and mode shapes of K₀·φ = ω²·M·φ on the placed, unconstrained DOFs,
-//! with K₀ the small-strain (elastic) stiffness of that state (see `crate::solver::modal`).
+//! with K₀ the small-strain (elastic) stiffness of that state (the solver's modal analysis).
 //!
 //! ```yaml
 //! stages:

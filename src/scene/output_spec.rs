@@ -1,6 +1,6 @@
 //! What a scene asks of the post-processing (`output.profiles`): the slab, interface and
 //! impoundment prefixes, the central section and the probes that the figures of
-//! [`crate::post::profiles`] and of the earthquake follow.
+//! post-processing and of the earthquake follow.
 
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
@@ -35,7 +35,7 @@ impl Default for ProfilesSpec {
 }
 
 /// An element followed through the stages (seed Fig. 10) and through an earthquake (seed
-/// Figs. 14, 18–20; [`crate::post::quake_figures`]): the element of kind `element` whose centre is
+/// Figs. 14, 18–20): the element of kind `element` whose centre is
 /// nearest to `elevation`, in the central section or at a bank ([`ProbeAt`]).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]

@@ -279,7 +279,7 @@ pub struct SolverSpec {
     pub max_cutbacks: u32,
     /// Growth of a static stage's load steps: a step converged in one Newton iteration doubles
     /// the next one, up to this many times the nominal step, and a step of more than three
-    /// halves it back to the nominal one ([`crate::solver::step_control`]). Default 1 (equal
+    /// halves it back to the nominal one (the solver's step control). Default 1 (equal
     /// steps); at most [`crate::scene::ranges::MAX_STEP_GROWTH`].
     #[serde(default = "one")]
     pub step_growth: u32,
@@ -346,7 +346,7 @@ pub enum LineSearch {
     /// The full step when it lowers the merit (one residual evaluation per iteration), else
     /// the minimum of the parabola through the zero, half and full step. A time step's mass
     /// term keeps its Newton corrections well scaled: on the coarse seed quake this took
-    /// 233 s instead of 345 s with `secant` ([`crate::performance`]).
+    /// 223 s instead of 345 s with `secant` ([`crate::performance`]).
     FullStepFirst,
     /// The full step when it lowers the merit and the secant through the two residual
     /// vectors F(x), F(x − δ) puts the minimum of ‖F‖ near it (one residual evaluation); the
@@ -403,7 +403,7 @@ pub enum LinearSolver {
     /// Krylov as `iterative`, preconditioned on the coupled rows only (the nodes of fill not
     /// yet placed and the constrained DOFs taken out): LU of the interface, joint and slab
     /// nodes, algebraic multigrid on the fill, in a block Gauss–Seidel split
-    /// ([`crate::linalg::reduced_amg`]). Each rank holds its share of the matrix, the
+    /// (`cfrd::guide`, "Linear solvers and PETSc options"). Each rank holds its share of the matrix, the
     /// multigrid and the factors; results agree between rank counts to the linear tolerance.
     ReducedAmg,
 }
@@ -467,11 +467,11 @@ pub struct OutputSpec {
     pub placed_nodes: PlacedNodes,
     /// CSV tables and PNG plots of the seed's static outputs (Figs. 7–11: dam displacement,
     /// slab stresses and deflection, interface jumps, probe stress paths) written into the
-    /// output directory at the end of the run; see [`crate::post::profiles`]. Absent: not written.
+    /// output directory at the end of the run (`cfrd::guide`, "Outputs"). Absent: not written.
     #[serde(default)]
     pub profiles: Option<crate::scene::output_spec::ProfilesSpec>,
     /// When to write `checkpoint.h5` into the output directory for `cfrd run --restart`:
-    /// `stage` (at the end of completed stages, paced: [`crate::io::pacing`]), `step` or `none`. Default: `stage` for scenes
+    /// `stage` (at the end of completed stages, paced so that writing costs at most 2.5 % of the run), `step` or `none`. Default: `stage` for scenes
     /// with `stages`, `none` otherwise.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub checkpoint: Option<CheckpointMode>,
@@ -483,7 +483,7 @@ pub struct OutputSpec {
 pub enum CheckpointMode {
     /// At the end of completed stages (replacing the previous checkpoint): every stage unless
     /// writing it and the results takes more than 1/40 of the time since the last, and always
-    /// after the last stage and at a stop ([`crate::io::pacing`]).
+    /// after the last stage and at a stop.
     Stage,
     /// After every converged load step, and at the end of every stage: a restart continues
     /// inside the stage (for stages that take longer than a job may run). Each such

@@ -14,7 +14,7 @@
 //! | [`exact_sum`] | the order-independent sums every Newton decision rests on |
 //! | [`modal`] | natural frequencies and mode shapes of K₀·φ = ω²·M·φ at a stage's start (SLEPc) |
 //!
-//! Checkpoint I/O lives in `crate::io::checkpoint`; the solver does not depend on it.
+//! Checkpoint I/O lives in the `io` room above; the solver does not depend on it.
 
 pub mod exact_sum;
 pub mod interface;

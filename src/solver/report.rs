@@ -41,14 +41,14 @@ pub struct SolveReport {
     #[serde(default)]
     pub stage_seconds: Vec<StageSeconds>,
     /// The crest's motion at every converged time step of the first dynamic stage
-    /// ([`crate::post::quake`], spec seismic §3.6): `[t, u_x, u_y, u_z, a_x, a_y, a_z, ag_x, ag_y,
+    /// (recorded by the run's quake observer): `[t, u_x, u_y, u_z, a_x, a_y, a_z, ag_x, ag_y,
     /// ag_z]`, u relative to the base and to the state before the quake (m), a absolute and a_g
     /// the ground's (m/s²). Kept in step checkpoints, so a restarted run has the whole history.
     #[serde(default)]
     pub crest: Vec<[f64; 10]>,
     /// The probes' state at t = 0 of the first dynamic stage and at every converged time step
-    /// of it ([`crate::post::quake_probes`], seed Figs. 14, 18–20): the time (s), then the values of
-    /// each probe in the order of [`crate::post::quake_probes::probe_elements`]. Kept in step
+    /// of it (recorded by the run's quake observer, for the seed's Figs. 14, 18–20): the time (s), then the values of
+    /// each probe in the order the observer found them. Kept in step
     /// checkpoints like [`SolveReport::crest`].
     #[serde(default)]
     pub probes: Vec<Vec<f64>>,

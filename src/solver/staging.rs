@@ -100,7 +100,7 @@ impl Problem<'_> {
     }
 
     /// Continues the stage in progress of a step checkpoint, once the problem's state is
-    /// restored from it (`crate::io::checkpoint::restore` calls this): the fixed DOFs and their
+    /// restored from it (the checkpoint reader in `io` calls this): the fixed DOFs and their
     /// start values from the stored start of the stage, and a fresh preconditioner, as the
     /// uninterrupted run has after writing that checkpoint. Collective.
     pub fn resume_stage(&mut self, progress: &StageProgress) -> Result<(), SolveError> {

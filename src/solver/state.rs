@@ -1,5 +1,5 @@
 //! The state of a problem that a checkpoint carries, in this rank's owned order; the I/O is
-//! in `crate::io::checkpoint`.
+//! by the checkpoint reader and writer of the `io` room.
 
 use super::integrator::Rates;
 use super::step_control::StepControl;
