@@ -597,72 +597,38 @@ pub fn write_profiles(
     stages: &[StageFields],
     dir: &Path,
 ) -> Result<Vec<PathBuf>, ProfilesError> {
-    let states = figure_states(spec, stages)?;
+    let states: Vec<(&str, &StageFields)> = figure_states(spec, stages)?
+        .into_iter()
+        .map(|(label, k)| (label, &stages[k]))
+        .collect();
+    let out = StaticFigures { mesh, spec, dir };
     let mut files = Vec::new();
-    fig07(mesh, spec, stages, &states, dir, &mut files)?;
-    figs08_09(mesh, spec, stages, &states, dir, &mut files)?;
-    fig11(mesh, spec, stages.last().expect("a stage"), dir, &mut files)?;
+    out.fig07(&states, &mut files)?;
+    out.figs08_09(&states, &mut files)?;
+    out.fig11(stages.last().expect("a stage"), &mut files)?;
     for probe in &spec.probes {
-        fig10(mesh, spec, probe, stages, dir, &mut files)?;
+        out.fig10(probe, stages, &mut files)?;
     }
     Ok(files)
 }
 
-/// Fig. 7: settlement and horizontal displacement on the crest-centre vertical.
-fn fig07(
+/// The slab's profiles at the central section for each of `states` (label, fields): the CSV
+/// table (`state,z_m,sigma_slope_Pa,sigma_axis_Pa,deflection_m`) and the three panels σ_s,
+/// σ_a and deflection against elevation (seed Figs. 8, 9 and 13).
+pub(crate) fn slab_profiles(
     mesh: &Mesh,
     spec: &ProfilesSpec,
-    stages: &[StageFields],
-    states: &[(&str, usize)],
-    dir: &Path,
-    files: &mut Vec<PathBuf>,
-) -> Result<(), ProfilesError> {
-    let mut csv = String::from("state,z_m,ux_m,uz_m\n");
-    let mut p_set = Panel::new(
-        "Settlement on the crest-centre vertical",
-        "settlement (m)",
-        "z (m)",
-    );
-    let mut p_hor = Panel::new("Horizontal displacement (x)", "u_x (m)", "z (m)");
-    for (label, k) in states {
-        let prof = axis_profile(mesh, spec, &stages[*k]);
-        for (z, ux, uz) in &prof {
-            let _ = writeln!(csv, "{label},{z},{ux},{uz}");
-        }
-        p_set.push(Series::line(*label, prof.iter().map(|r| (-r.2, r.0)).collect()));
-        p_hor.push(Series::line(*label, prof.iter().map(|r| (r.1, r.0)).collect()));
-    }
-    csv_out(dir, files, "fig07_dam_displacement.csv", csv)?;
-    let figure = Figure::new("Dam displacement at the central section (seed Fig. 7)")
-        .with(p_set)
-        .with(p_hor);
-    png_out(dir, files, "fig07_dam_displacement.png", figure)?;
-    Ok(())
-}
-
-/// Figs. 8 and 9: slab stresses along the slope and the axis, and the slab's deflection.
-fn figs08_09(
-    mesh: &Mesh,
-    spec: &ProfilesSpec,
-    stages: &[StageFields],
-    states: &[(&str, usize)],
-    dir: &Path,
-    files: &mut Vec<PathBuf>,
-) -> Result<(), ProfilesError> {
+    states: &[(&str, &StageFields)],
+) -> (String, [Panel; 3]) {
     let mut csv = String::from("state,z_m,sigma_slope_Pa,sigma_axis_Pa,deflection_m\n");
-    let mut p_s = Panel::new(
-        "Slab stress along the slope (tension +)",
-        "sigma_s (MPa)",
-        "z (m)",
-    );
-    let mut p_a = Panel::new(
-        "Slab stress along the dam axis (tension +)",
-        "sigma_a (MPa)",
-        "z (m)",
-    );
-    let mut p_d = Panel::new("Slab deflection (towards the dam +)", "deflection (cm)", "z (m)");
-    for (label, k) in states {
-        let prof = slab_profile(mesh, spec, &stages[*k]);
+    let mut panels = [
+        ("Slab stress along the slope (tension +)", "sigma_s (MPa)"),
+        ("Slab stress along the dam axis (tension +)", "sigma_a (MPa)"),
+        ("Slab deflection (towards the dam +)", "deflection (cm)"),
+    ]
+    .map(|(title, x)| Panel::new(title, x, "z (m)"));
+    for (label, fields) in states {
+        let prof = slab_profile(mesh, spec, fields);
         for r in &prof {
             let _ = writeln!(
                 csv,
@@ -671,104 +637,141 @@ fn figs08_09(
             );
         }
         let line = |f: fn(&SlabRow) -> f64| Series::line(*label, prof.iter().map(|r| (f(r), r.z)).collect());
-        p_s.push(line(|r| r.sigma_slope / 1e6));
-        p_a.push(line(|r| r.sigma_axis / 1e6));
-        p_d.push(line(|r| r.deflection * 100.0));
+        panels[0].push(line(|r| r.sigma_slope / 1e6));
+        panels[1].push(line(|r| r.sigma_axis / 1e6));
+        panels[2].push(line(|r| r.deflection * 100.0));
     }
-    csv_out(dir, files, "fig08_slab_stress.csv", csv.clone())?;
-    csv_out(dir, files, "fig09_slab_deflection.csv", csv)?;
-    let stress = Figure::new("Slab stresses at the central section (seed Fig. 8)")
-        .with(p_s)
-        .with(p_a);
-    png_out(dir, files, "fig08_slab_stress.png", stress)?;
-    let deflection = Figure::new("Slab deflection at the central section (seed Fig. 9)")
-        .with(p_d)
-        .columns(1);
-    png_out(dir, files, "fig09_slab_deflection.png", deflection)?;
-    Ok(())
+    (csv, panels)
 }
 
-/// Fig. 11: the interface's jumps and opening at the central section after the last stage.
-fn fig11(
-    mesh: &Mesh,
-    spec: &ProfilesSpec,
-    last: &StageFields,
-    dir: &Path,
-    files: &mut Vec<PathBuf>,
-) -> Result<(), ProfilesError> {
-    let prof = interface_profile(mesh, spec, last);
-    if prof.is_empty() {
-        return Ok(());
-    }
-    let mut csv = String::from("z_m,delta_s_m,delta_a_m,delta_n_m,tau_s_Pa,tau_a_Pa,sigma_n_Pa,opening_m\n");
-    for r in &prof {
-        let _ = writeln!(
-            csv,
-            "{},{},{},{},{},{},{},{}",
-            r.z, r.jump[0], r.jump[1], r.jump[2], r.tau[0], r.tau[1], r.sigma_n, r.opening
+/// Where and from what the static figures are drawn.
+struct StaticFigures<'a> {
+    mesh: &'a Mesh,
+    spec: &'a ProfilesSpec,
+    dir: &'a Path,
+}
+
+impl StaticFigures<'_> {
+    /// Fig. 7: settlement and horizontal displacement on the crest-centre vertical.
+    fn fig07(&self, states: &[(&str, &StageFields)], files: &mut Vec<PathBuf>) -> Result<(), ProfilesError> {
+        let mut csv = String::from("state,z_m,ux_m,uz_m\n");
+        let mut p_set = Panel::new(
+            "Settlement on the crest-centre vertical",
+            "settlement (m)",
+            "z (m)",
         );
+        let mut p_hor = Panel::new("Horizontal displacement (x)", "u_x (m)", "z (m)");
+        for (label, fields) in states {
+            let prof = axis_profile(self.mesh, self.spec, fields);
+            for (z, ux, uz) in &prof {
+                let _ = writeln!(csv, "{label},{z},{ux},{uz}");
+            }
+            p_set.push(Series::line(*label, prof.iter().map(|r| (-r.2, r.0)).collect()));
+            p_hor.push(Series::line(*label, prof.iter().map(|r| (r.1, r.0)).collect()));
+        }
+        csv_out(self.dir, files, "fig07_dam_displacement.csv", csv)?;
+        let figure = Figure::new("Dam displacement at the central section (seed Fig. 7)")
+            .with(p_set)
+            .with(p_hor);
+        png_out(self.dir, files, "fig07_dam_displacement.png", figure)?;
+        Ok(())
     }
-    csv_out(dir, files, "fig11_interface.csv", csv)?;
-    let line = |name: &str, f: fn(&InterfaceRow) -> f64| {
-        Series::line(name, prof.iter().map(|r| (f(r) * 1e3, r.z)).collect())
-    };
-    let figure = Figure::new(format!(
-        "Interface at the central section, stage '{}' (seed Fig. 11)",
-        last.name
-    ))
-    .with(
-        Panel::new("Normal jump (opening +) and opening", "mm", "z (m)")
-            .with(line("delta_n", |r| r.jump[2]))
-            .with(line("opening", |r| r.opening)),
-    )
-    .with(
-        Panel::new("Shear jump (cushion relative to slab)", "mm", "z (m)")
-            .with(line("delta_s (up-slope)", |r| r.jump[0]))
-            .with(line("delta_a (axis)", |r| r.jump[1])),
-    );
-    png_out(dir, files, "fig11_interface.png", figure)?;
-    Ok(())
-}
 
-/// Fig. 10: the stress path and the shear displacement against the stress ratio of a probe
-/// interface element through the stages (nothing when the probe finds no element).
-fn fig10(
-    mesh: &Mesh,
-    spec: &ProfilesSpec,
-    probe: &Probe,
-    stages: &[StageFields],
-    dir: &Path,
-    files: &mut Vec<PathBuf>,
-) -> Result<(), ProfilesError> {
-    let Some(hist) = probe_history(mesh, spec, probe, stages) else {
-        return Ok(());
-    };
-    let mut csv = String::from("stage,sigma_n_Pa,tau_Pa,delta_s_m,tau_over_sigma_n\n");
-    for h in &hist {
-        let _ = writeln!(csv, "{},{},{},{},{}", h.stage, h.sigma_n, h.tau, h.slip, h.ratio);
+    /// Figs. 8 and 9: slab stresses along the slope and the axis, and the slab's deflection.
+    fn figs08_09(
+        &self,
+        states: &[(&str, &StageFields)],
+        files: &mut Vec<PathBuf>,
+    ) -> Result<(), ProfilesError> {
+        let (csv, [p_s, p_a, p_d]) = slab_profiles(self.mesh, self.spec, states);
+        csv_out(self.dir, files, "fig08_slab_stress.csv", csv.clone())?;
+        csv_out(self.dir, files, "fig09_slab_deflection.csv", csv)?;
+        let stress = Figure::new("Slab stresses at the central section (seed Fig. 8)")
+            .with(p_s)
+            .with(p_a);
+        png_out(self.dir, files, "fig08_slab_stress.png", stress)?;
+        let deflection = Figure::new("Slab deflection at the central section (seed Fig. 9)")
+            .with(p_d)
+            .columns(1);
+        png_out(self.dir, files, "fig09_slab_deflection.png", deflection)?;
+        Ok(())
     }
-    let safe = safe_name(&probe.name);
-    csv_out(dir, files, &format!("fig10_probe_{safe}.csv"), csv)?;
-    let figure = Figure::new(format!("Interface element {} (seed Fig. 10)", probe.name))
+
+    /// Fig. 11: the interface's jumps and opening at the central section after the last stage.
+    fn fig11(&self, last: &StageFields, files: &mut Vec<PathBuf>) -> Result<(), ProfilesError> {
+        let prof = interface_profile(self.mesh, self.spec, last);
+        if prof.is_empty() {
+            return Ok(());
+        }
+        let mut csv =
+            String::from("z_m,delta_s_m,delta_a_m,delta_n_m,tau_s_Pa,tau_a_Pa,sigma_n_Pa,opening_m\n");
+        for r in &prof {
+            let _ = writeln!(
+                csv,
+                "{},{},{},{},{},{},{},{}",
+                r.z, r.jump[0], r.jump[1], r.jump[2], r.tau[0], r.tau[1], r.sigma_n, r.opening
+            );
+        }
+        csv_out(self.dir, files, "fig11_interface.csv", csv)?;
+        let line = |name: &str, f: fn(&InterfaceRow) -> f64| {
+            Series::line(name, prof.iter().map(|r| (f(r) * 1e3, r.z)).collect())
+        };
+        let figure = Figure::new(format!(
+            "Interface at the central section, stage '{}' (seed Fig. 11)",
+            last.name
+        ))
         .with(
-            Panel::new("Stress path", "sigma_n (kPa)", "tau (kPa)").with(Series::line(
-                "",
-                hist.iter().map(|h| (h.sigma_n / 1e3, h.tau / 1e3)).collect(),
-            )),
+            Panel::new("Normal jump (opening +) and opening", "mm", "z (m)")
+                .with(line("delta_n", |r| r.jump[2]))
+                .with(line("opening", |r| r.opening)),
         )
         .with(
-            Panel::new(
-                "Shear displacement vs stress ratio",
-                "tau / sigma_n",
-                "delta_s (mm)",
-            )
-            .with(Series::line(
-                "",
-                hist.iter().map(|h| (h.ratio, h.slip * 1e3)).collect(),
-            )),
+            Panel::new("Shear jump (cushion relative to slab)", "mm", "z (m)")
+                .with(line("delta_s (up-slope)", |r| r.jump[0]))
+                .with(line("delta_a (axis)", |r| r.jump[1])),
         );
-    png_out(dir, files, &format!("fig10_probe_{safe}.png"), figure)?;
-    Ok(())
+        png_out(self.dir, files, "fig11_interface.png", figure)?;
+        Ok(())
+    }
+
+    /// Fig. 10: the stress path and the shear displacement against the stress ratio of a probe
+    /// interface element through the stages (nothing when the probe finds no element).
+    fn fig10(
+        &self,
+        probe: &Probe,
+        stages: &[StageFields],
+        files: &mut Vec<PathBuf>,
+    ) -> Result<(), ProfilesError> {
+        let Some(hist) = probe_history(self.mesh, self.spec, probe, stages) else {
+            return Ok(());
+        };
+        let mut csv = String::from("stage,sigma_n_Pa,tau_Pa,delta_s_m,tau_over_sigma_n\n");
+        for h in &hist {
+            let _ = writeln!(csv, "{},{},{},{},{}", h.stage, h.sigma_n, h.tau, h.slip, h.ratio);
+        }
+        let safe = safe_name(&probe.name);
+        csv_out(self.dir, files, &format!("fig10_probe_{safe}.csv"), csv)?;
+        let figure = Figure::new(format!("Interface element {} (seed Fig. 10)", probe.name))
+            .with(
+                Panel::new("Stress path", "sigma_n (kPa)", "tau (kPa)").with(Series::line(
+                    "",
+                    hist.iter().map(|h| (h.sigma_n / 1e3, h.tau / 1e3)).collect(),
+                )),
+            )
+            .with(
+                Panel::new(
+                    "Shear displacement vs stress ratio",
+                    "tau / sigma_n",
+                    "delta_s (mm)",
+                )
+                .with(Series::line(
+                    "",
+                    hist.iter().map(|h| (h.ratio, h.slip * 1e3)).collect(),
+                )),
+            );
+        png_out(self.dir, files, &format!("fig10_probe_{safe}.png"), figure)?;
+        Ok(())
+    }
 }
 
 #[cfg(test)]

@@ -32,7 +32,7 @@ use crate::mesh::Mesh;
 use crate::plot::{Figure, Panel, Series};
 use crate::post::output::{csv_out, png_out};
 use crate::post::profiles::{
-    body_nodes, centre, elements_with_prefix, elevation_groups, section_y, slab_profile, ProfilesSpec,
+    body_nodes, centre, elements_with_prefix, elevation_groups, section_y, slab_profiles, ProfilesSpec,
     StageFields,
 };
 use crate::post::quake_fields::{read_quake_fields, residual, QuakeFields};
@@ -93,14 +93,21 @@ pub fn section_outline(mesh: &Mesh, spec: &ProfilesSpec) -> Vec<usize> {
     outline
 }
 
+/// What the residual figures are drawn from, and where.
+struct QuakeOut<'a> {
+    mesh: &'a Mesh,
+    spec: &'a ProfilesSpec,
+    q: &'a QuakeFields,
+    /// The residual state, after − before the quake.
+    res: StageFields,
+    dir: &'a Path,
+}
+
 /// Fig. 12: the section outline before and after the quake.
-fn fig12(
-    mesh: &Mesh,
-    spec: &ProfilesSpec,
-    q: &QuakeFields,
-    dir: &Path,
-    files: &mut Vec<PathBuf>,
-) -> Result<(), String> {
+fn fig12(out: &QuakeOut, files: &mut Vec<PathBuf>) -> Result<(), String> {
+    let QuakeOut {
+        mesh, spec, q, dir, ..
+    } = out;
     let outline = section_outline(mesh, spec);
     let res = residual(&q.before, q.after());
     let du = |n: usize| [res.displacement[3 * n], res.displacement[3 * n + 2]];
@@ -146,44 +153,20 @@ fn fig12(
 }
 
 /// Fig. 13: slab profiles before, after and induced by the residual deformation.
-fn fig13(
-    mesh: &Mesh,
-    spec: &ProfilesSpec,
-    q: &QuakeFields,
-    dir: &Path,
-    files: &mut Vec<PathBuf>,
-) -> Result<(), String> {
-    let res = residual(&q.before, q.after());
+fn fig13(out: &QuakeOut, files: &mut Vec<PathBuf>) -> Result<(), String> {
+    let QuakeOut {
+        mesh,
+        spec,
+        q,
+        res,
+        dir,
+    } = out;
     let states = [
         ("before the quake", &q.before),
         ("after the quake", q.after()),
-        ("residual", &res),
+        ("residual", res),
     ];
-    let mut csv = String::from("state,z_m,sigma_slope_Pa,sigma_axis_Pa,deflection_m\n");
-    let titles = [
-        ("Slab stress along the slope (tension +)", "sigma_s (MPa)"),
-        ("Slab stress along the dam axis (tension +)", "sigma_a (MPa)"),
-        ("Slab deflection (towards the dam +)", "deflection (cm)"),
-    ];
-    let mut panels: Vec<Panel> = titles.iter().map(|(t, x)| Panel::new(*t, *x, "z (m)")).collect();
-    for (label, fields) in states {
-        let prof = slab_profile(mesh, spec, fields);
-        for r in &prof {
-            let _ = writeln!(
-                csv,
-                "{label},{},{},{},{}",
-                r.z, r.sigma_slope, r.sigma_axis, r.deflection
-            );
-        }
-        let values: [Vec<(f64, f64)>; 3] = [
-            prof.iter().map(|r| (r.sigma_slope / 1e6, r.z)).collect(),
-            prof.iter().map(|r| (r.sigma_axis / 1e6, r.z)).collect(),
-            prof.iter().map(|r| (r.deflection * 100.0, r.z)).collect(),
-        ];
-        for (panel, points) in panels.iter_mut().zip(values) {
-            panel.push(Series::line(label, points));
-        }
-    }
+    let (csv, panels) = slab_profiles(mesh, spec, &states);
     csv_out(dir, files, "fig13_residual_slab.csv", csv)?;
     let mut fig =
         Figure::new("Slab at the central section: residual = after - before the quake (seed Fig. 13)");
@@ -197,14 +180,14 @@ fn fig13(
 /// Fig. 14: stress history of a slab probe element `e`.
 /// Figs. 15–17: the residual interface state of every interface element, as a table and as
 /// plots over the unfolded face (y along the axis, z up).
-fn figs15_17(
-    mesh: &Mesh,
-    spec: &ProfilesSpec,
-    q: &QuakeFields,
-    dir: &Path,
-    files: &mut Vec<PathBuf>,
-) -> Result<(), String> {
-    let res = residual(&q.before, q.after());
+fn figs15_17(out: &QuakeOut, files: &mut Vec<PathBuf>) -> Result<(), String> {
+    let QuakeOut {
+        mesh,
+        spec,
+        q,
+        res,
+        dir,
+    } = out;
     let after = q.after();
     let iface = elements_with_prefix(mesh, &spec.interface_prefix);
     let mut csv = String::from(
@@ -239,7 +222,7 @@ fn figs15_17(
         dir,
         files,
         "fig15_interface_slip.png",
-        slip_vectors(mesh, &iface, &res),
+        slip_vectors(mesh, &iface, res),
     )?;
     let rows = face_rows(mesh, &iface);
     let normal = |e: usize| (res.interface_jump[3 * e + 2] - res.interface_opening[e]) * 1e3;
@@ -384,10 +367,17 @@ pub fn write_quake_figures(
     let mut files = Vec::new();
     let q = read_quake_fields(scene, h5s)?;
     if let Some(q) = &q {
-        fig12(mesh, spec, q, dir, &mut files)?;
-        fig13(mesh, spec, q, dir, &mut files)?;
+        let out = QuakeOut {
+            mesh,
+            spec,
+            q,
+            res: residual(&q.before, q.after()),
+            dir,
+        };
+        fig12(&out, &mut files)?;
+        fig13(&out, &mut files)?;
         if !q.before.interface_jump.is_empty() && !q.after().interface_jump.is_empty() {
-            figs15_17(mesh, spec, q, dir, &mut files)?;
+            figs15_17(&out, &mut files)?;
         }
     }
     // a run restarted inside the quake lacks the state before it in its results, but its

@@ -169,33 +169,50 @@ pub fn write_probe_figures(
     dir: &Path,
     files: &mut Vec<PathBuf>,
 ) -> Result<(), String> {
+    let mut out = ProbeOut {
+        mesh,
+        sampling: &h.sampling,
+        dir,
+        files,
+    };
     let mut offset = 0;
     let mut openings = Vec::new();
     for p in probes {
         match p.kind {
-            ProbeElement::Slab => fig14(mesh, p, h.series(offset, 6), &h.sampling, dir, files)?,
+            ProbeElement::Slab => fig14(&mut out, p, h.series(offset, 6))?,
             ProbeElement::Interface => {
-                fig18(mesh, p, h.series(offset, 7), &h.sampling, dir, files)?;
+                fig18(&mut out, p, h.series(offset, 7))?;
                 openings.push((p.name.as_str(), offset + 6));
             }
         }
         offset += p.width();
     }
     if !openings.is_empty() {
-        fig20(&openings, h, dir, files)?;
+        fig20(&openings, h, dir, out.files)?;
     }
     Ok(())
 }
 
+/// Where a probe's figures go, and the sampling note of their tables.
+struct ProbeOut<'a> {
+    mesh: &'a Mesh,
+    sampling: &'a str,
+    dir: &'a Path,
+    files: &'a mut Vec<PathBuf>,
+}
+
 /// Fig. 14: σ_s, σ_a history of a slab probe.
 fn fig14<'a>(
-    mesh: &Mesh,
+    out: &mut ProbeOut,
     p: &QuakeProbe,
     series: impl Iterator<Item = (f64, &'a [f64])>,
-    sampling: &str,
-    dir: &Path,
-    files: &mut Vec<PathBuf>,
 ) -> Result<(), String> {
+    let ProbeOut {
+        mesh,
+        sampling,
+        dir,
+        ref mut files,
+    } = *out;
     let frame = slab_frame(&mesh.element_coords(p.element));
     let mut csv = format!("{sampling}\nt_s,sigma_slope_Pa,sigma_axis_Pa\n");
     let (mut s, mut a) = (Vec::new(), Vec::new());
@@ -225,13 +242,16 @@ fn fig14<'a>(
 
 /// Figs. 18–19: stress and displacement history of an interface probe.
 fn fig18<'a>(
-    mesh: &Mesh,
+    out: &mut ProbeOut,
     p: &QuakeProbe,
     series: impl Iterator<Item = (f64, &'a [f64])>,
-    sampling: &str,
-    dir: &Path,
-    files: &mut Vec<PathBuf>,
 ) -> Result<(), String> {
+    let ProbeOut {
+        mesh,
+        sampling,
+        dir,
+        ref mut files,
+    } = *out;
     let mut csv =
         format!("{sampling}\nt_s,sigma_n_Pa,tau_s_Pa,tau_a_Pa,delta_s_m,delta_a_m,delta_n_m,opening_m\n");
     let mut cols: [Vec<(f64, f64)>; 7] = Default::default();
