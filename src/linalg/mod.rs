@@ -2,7 +2,7 @@
 //! ([`slepc`]) solves the eigenproblems of the modal analysis.
 
 pub mod ffi;
-pub mod lagged_lu;
 pub mod petsc;
-pub mod reduced_amg;
 pub mod slepc;
+
+pub use petsc::{lagged_lu, reduced_amg};
