@@ -73,19 +73,10 @@ impl Petsc {
     /// as `-name value` (PETSc's own unused-option record, `PetscOptionsLeftGet`): at the end of
     /// a run, misspelled options or options of a solver the run did not use.
     pub fn unused_options(&self) -> Result<Vec<String>, PetscError> {
-        let mut n: p::PetscInt = 0;
-        let mut names: *mut *mut c_char = null_mut();
-        let mut values: *mut *mut c_char = null_mut();
-        call!(PetscOptionsLeftGet(null_mut(), &mut n, &mut names, &mut values))?;
-        // SAFETY: PETSc returned `n` entries in each list, valid until PetscOptionsLeftRestore.
-        let left = unsafe { left_options(n, names, values) };
-        call!(PetscOptionsLeftRestore(
-            null_mut(),
-            &mut n,
-            &mut names,
-            &mut values
-        ))?;
-        left
+        let lists = LeftOptions::get()?;
+        let left = lists.text()?;
+        lists.restore()?;
+        Ok(left)
     }
 
     /// The communicator PETSc runs on.
@@ -94,36 +85,83 @@ impl Petsc {
     }
 }
 
-/// The `n` options of PETSc's unused-option lists `names` and `values` as `-name value`.
-///
-/// # Safety
-/// Each list holds `n` entries (an entry of `values` may be NULL: no value), valid for the call.
-unsafe fn left_options(
+/// PETSc's lists of unused options (`PetscOptionsLeftGet`), given back by
+/// [`LeftOptions::restore`] or, on an early return, on drop.
+struct LeftOptions {
     n: p::PetscInt,
     names: *mut *mut c_char,
     values: *mut *mut c_char,
-) -> Result<Vec<String>, PetscError> {
-    let text = |list: *mut *mut c_char, i: usize| -> String {
-        // SAFETY: `i < n` entries (the caller's contract); NULL is no value.
-        unsafe {
-            let s = *list.add(i);
-            if s.is_null() {
-                String::new()
-            } else {
-                CStr::from_ptr(s).to_string_lossy().into_owned()
+    lent: bool,
+}
+
+impl LeftOptions {
+    /// The options of the database that no PETSc object has read.
+    fn get() -> Result<LeftOptions, PetscError> {
+        let mut lists = LeftOptions {
+            n: 0,
+            names: null_mut(),
+            values: null_mut(),
+            lent: false,
+        };
+        call!(PetscOptionsLeftGet(
+            null_mut(),
+            &mut lists.n,
+            &mut lists.names,
+            &mut lists.values
+        ))?;
+        lists.lent = true;
+        Ok(lists)
+    }
+
+    /// The options as `-name value`.
+    fn text(&self) -> Result<Vec<String>, PetscError> {
+        let entry = |list: *mut *mut c_char, i: usize| -> String {
+            // SAFETY: PETSc returned `n` entries in each list (`i < n`), valid until
+            // PetscOptionsLeftRestore; an entry may be NULL (no value).
+            unsafe {
+                let s = *list.add(i);
+                if s.is_null() {
+                    String::new()
+                } else {
+                    CStr::from_ptr(s).to_string_lossy().into_owned()
+                }
             }
+        };
+        let left = (0..to_usize(self.n.max(0), "unused options")?)
+            .map(|i| {
+                let (name, value) = (entry(self.names, i), entry(self.values, i));
+                match value.is_empty() {
+                    true => format!("-{name}"),
+                    false => format!("-{name} {value}"),
+                }
+            })
+            .collect();
+        Ok(left)
+    }
+
+    fn give_back(&mut self) -> Result<(), PetscError> {
+        self.lent = false;
+        call!(PetscOptionsLeftRestore(
+            null_mut(),
+            &mut self.n,
+            &mut self.names,
+            &mut self.values
+        ))
+    }
+
+    /// Gives the lists back to PETSc.
+    fn restore(mut self) -> Result<(), PetscError> {
+        self.give_back()
+    }
+}
+
+impl Drop for LeftOptions {
+    fn drop(&mut self) {
+        if self.lent {
+            // an error is already on its way out; this one would only hide it
+            let _ = self.give_back();
         }
-    };
-    let left = (0..to_usize(n.max(0), "unused options")?)
-        .map(|i| {
-            let (name, value) = (text(names, i), text(values, i));
-            match value.is_empty() {
-                true => format!("-{name}"),
-                false => format!("-{name} {value}"),
-            }
-        })
-        .collect();
-    Ok(left)
+    }
 }
 
 impl Drop for Petsc {
