@@ -2,7 +2,7 @@
 //! (see `spec/stack.md` §3; SLEPc serves the modal analysis of spec seismic §4 items 4 and 9).
 //!
 //! Only runs when the `native` feature is on. Refuses to build against a PETSc with 64-bit indices or
-//! non-double scalars, because the safe layer in `src/linalg/petsc.rs` assumes `PetscInt = i32` and
+//! non-double scalars, because the safe layer in `src/linalg/petsc/` assumes `PetscInt = i32` and
 //! `PetscScalar = f64`.
 
 use std::env;

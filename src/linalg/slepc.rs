@@ -12,19 +12,14 @@
 #![allow(unsafe_code)]
 
 use super::ffi as p;
-use super::petsc::{chk, Matrix, PetscError, Vector};
+use super::petsc::error::{to_petsc_int, to_usize};
+use super::petsc::{call, Matrix, PetscError, Vector};
 use std::ffi::{c_char, CString};
 use std::ptr::null_mut;
 
 /// Converged relative residual ‖A·x − λ·B·x‖/(|λ|·‖x‖) of each eigenpair (SLEPc's default
 /// convergence test), far below the 0.1 % the verification of spec seismic §4 item 4 asks for.
 pub const EIGEN_TOLERANCE: f64 = 1e-10;
-
-macro_rules! call {
-    ($f:ident ( $($arg:expr),* $(,)? )) => {
-        chk(unsafe { p::$f($($arg),*) }, stringify!($f))
-    };
-}
 
 /// One eigenpair: the eigenvalue λ and the eigenvector's owned entries (B-normalized:
 /// xᵀ·B·x = 1).
@@ -65,7 +60,7 @@ impl Eps {
         call!(EPSSolve(eps.raw))?;
         let mut converged: p::PetscInt = 0;
         call!(EPSGetConverged(eps.raw, &mut converged))?;
-        if (converged.max(0) as usize) < count {
+        if to_usize(converged.max(0), "converged eigenpairs")? < count {
             return Err(PetscError {
                 code: -1,
                 call: "EPSSolve",
@@ -85,9 +80,10 @@ impl Eps {
         let eps = Eps { raw };
         call!(EPSSetOperators(eps.raw, a.raw(), b.raw()))?;
         call!(EPSSetProblemType(eps.raw, p::EPS_GHEP))?;
+        let count = to_petsc_int(count, "eigenpairs")?;
         call!(EPSSetDimensions(
             eps.raw,
-            count as p::PetscInt,
+            count,
             p::PETSC_DEFAULT,
             p::PETSC_DEFAULT
         ))?;
@@ -123,10 +119,11 @@ impl Eps {
     /// The converged pair `i` (vector laid out like `a`'s columns).
     fn pair(&self, a: &Matrix, i: usize) -> Result<Eigenpair, PetscError> {
         let x: Vector = a.column_vector()?;
+        let i = to_petsc_int(i, "eigenpair")?;
         let (mut re, mut im) = (0.0, 0.0);
         call!(EPSGetEigenpair(
             self.raw,
-            i as p::PetscInt,
+            i,
             &mut re,
             &mut im,
             x.raw(),

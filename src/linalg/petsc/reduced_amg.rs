@@ -150,19 +150,17 @@
 //! the multigrid hierarchy and of the structure's factors.
 #![allow(unsafe_code)]
 
-use super::ffi as p;
-use super::petsc::{chk, default_option, mark_coupled_rows, PetscError, CALLBACK_FAILED};
-use std::ffi::{c_char, CString};
+use super::coupling::mark_coupled_rows;
+use super::error::{call, chk, to_petsc_int, to_usize, PetscError};
+use super::options::{bool_option, default_option, int_option};
+use super::pc_shell::{self, PcShell};
+use super::vector::{SubVector, Vector};
+use crate::linalg::ffi as p;
+use std::ffi::{c_char, CStr, CString};
 use std::ptr::null_mut;
 
-macro_rules! call {
-    ($f:ident ( $($arg:expr),* $(,)? )) => {
-        chk(unsafe { p::$f($($arg),*) }, stringify!($f))
-    };
-}
-
 /// The name the shell reports (`-ksp_view`), and by which it is recognised.
-pub const REDUCED_AMG_NAME: &[u8] = b"multigrid on the coupled rows\0";
+pub const REDUCED_AMG_NAME: &CStr = c"multigrid on the coupled rows";
 
 /// The options prefix of the inner multigrid solve.
 const PREFIX: &str = "reduced_";
@@ -205,12 +203,12 @@ pub struct ReducedAmg {
 
 /// The preconditioner of an earlier Jacobian of the stage is kept while the solves it serves
 /// need at most this many Krylov iterations (module docs, "Lagged").
-const REFRESH_AFTER: u32 = 20;
+const REFRESH_AFTER: p::PetscInt = 20;
 
 /// The structure alone is factored afresh, the fill's multigrid kept, at every Jacobian whose
 /// last solve needed more than this many applications: the interfaces' tangent is what goes
 /// stale (module docs, "Lagged").
-const STRUCTURE_REFRESH_AFTER: u32 = 0;
+const STRUCTURE_REFRESH_AFTER: p::PetscInt = 0;
 
 impl ReducedAmg {
     /// The shell's state on communicator `comm`; `symmetric` (CG outside) keeps GAMG's
@@ -261,12 +259,12 @@ impl ReducedAmg {
             diag: null_mut(),
             structure,
             applies: 0,
-            refresh_after: int_option("-reduced_refresh_after", REFRESH_AFTER as i32)?.max(0) as u32,
-            structure_refresh_after: int_option(
-                "-reduced_structure_refresh_after",
-                STRUCTURE_REFRESH_AFTER as i32,
-            )?
-            .max(0) as u32,
+            refresh_after: int_option("-reduced_refresh_after", REFRESH_AFTER)?
+                .max(0)
+                .unsigned_abs(),
+            structure_refresh_after: int_option("-reduced_structure_refresh_after", STRUCTURE_REFRESH_AFTER)?
+                .max(0)
+                .unsigned_abs(),
             split_ready: false,
             builds: 0,
             multigrid_builds: 0,
@@ -276,45 +274,7 @@ impl ReducedAmg {
 
     /// Makes `pc` apply this shell.
     pub(crate) fn install(&self, pc: p::PC) -> Result<(), PetscError> {
-        call!(PCSetType(pc, p::PCSHELL.as_ptr() as *const c_char))?;
-        let ctx = self as *const ReducedAmg as *mut std::ffi::c_void;
-        call!(PCShellSetContext(pc, ctx))?;
-        call!(PCShellSetSetUp(pc, Some(reduced_amg_setup)))?;
-        call!(PCShellSetApply(pc, Some(reduced_amg_apply)))?;
-        call!(PCShellSetName(pc, REDUCED_AMG_NAME.as_ptr() as *const c_char))
-    }
-
-    /// Finds the coupled nodes of the preconditioning matrix and, when they changed or the last
-    /// solve needed more than `refresh_after` applications, extracts their block (a new one
-    /// with its near-null space when they changed) and builds its preconditioner; when it
-    /// needed more than `structure_refresh_after`, factors the structure afresh and keeps the
-    /// fill's multigrid; otherwise the earlier one stays (module docs, "Lagged").
-    fn setup(&mut self, pc: p::PC) -> Result<(), PetscError> {
-        let (mut a, mut pmat): (p::Mat, p::Mat) = (null_mut(), null_mut());
-        call!(PCGetOperators(pc, &mut a, &mut pmat))?;
-        if self.flags.is_null() {
-            call!(MatCreateVecs(pmat, &mut self.flags, &mut self.diag))?;
-        }
-        mark_coupled_rows(pmat, self.flags)?;
-        call!(MatGetDiagonal(pmat, self.diag))?;
-        let rows = self.coupled_nodes()?;
-        let changed = self.any_rank(rows != self.rows)?;
-        let applies = std::mem::take(&mut self.applies);
-        let stale = applies > self.refresh_after || std::mem::take(&mut self.failed);
-        if changed || self.sub.is_null() {
-            self.new_block(pmat, rows)?;
-        } else if stale || (self.split_ready && applies > self.structure_refresh_after) {
-            call!(MatCreateSubMatrix(
-                pmat,
-                self.is,
-                self.is,
-                p::MAT_REUSE_MATRIX,
-                &mut self.sub
-            ))?;
-        } else {
-            return Ok(());
-        }
-        self.build(pc, !(stale || changed || !self.split_ready))
+        pc_shell::install(pc, self)
     }
 
     /// Builds the inner solver's preconditioner on the current block: the structure's factors
@@ -374,30 +334,26 @@ impl ReducedAmg {
 
     /// The owned rows of every node with a coupled DOF (all three of its DOFs), increasing.
     fn coupled_nodes(&self) -> Result<Vec<i32>, PetscError> {
-        let (mut lo, mut n) = (0, 0);
-        call!(VecGetOwnershipRange(self.flags, &mut lo, &mut n))?;
-        call!(VecGetLocalSize(self.flags, &mut n))?;
-        let mut ptr: *const f64 = std::ptr::null();
-        call!(VecGetArrayRead(self.flags, &mut ptr))?;
-        // SAFETY: `n` readable entries until VecRestoreArrayRead (none when n = 0).
-        let f = if n == 0 {
-            &[][..]
-        } else {
-            unsafe { std::slice::from_raw_parts(ptr, n as usize) }
-        };
-        let rows: Vec<i32> = f
-            .chunks(3)
-            .enumerate()
-            .filter(|(_, node)| node.iter().any(|&m| m > 0.0))
-            .flat_map(|(k, _)| (0..3).map(move |c| lo + 3 * k as i32 + c))
-            .collect();
-        call!(VecRestoreArrayRead(self.flags, &mut ptr))?;
+        let flags = Vector::borrowed(self.flags);
+        let (lo, _) = flags.ownership_range_raw()?;
+        let nodes: Vec<usize> = flags.read(|f| {
+            f.chunks(3)
+                .enumerate()
+                .filter(|(_, node)| node.iter().any(|&m| m > 0.0))
+                .map(|(k, _)| k)
+                .collect()
+        })?;
+        let mut rows = Vec::with_capacity(3 * nodes.len());
+        for k in nodes {
+            let first = lo + 3 * to_petsc_int(k, "coupled node")?;
+            rows.extend((0..3).map(|c| first + c));
+        }
         Ok(rows)
     }
 
     /// Whether `local` holds on any rank (collective).
     fn any_rank(&self, local: bool) -> Result<bool, PetscError> {
-        let (mine, mut any) = (local as i32, 0i32);
+        let (mine, mut any) = (i32::from(local), 0i32);
         // SAFETY: one int in and out on the solver's communicator, called on every rank.
         let rc = unsafe {
             mpi::ffi::MPI_Allreduce(
@@ -418,10 +374,11 @@ impl ReducedAmg {
     fn new_block(&mut self, pmat: p::Mat, rows: Vec<i32>) -> Result<(), PetscError> {
         self.destroy_block();
         let blocks: Vec<i32> = rows.iter().step_by(3).map(|&r| r / 3).collect();
+        let n_blocks = to_petsc_int(blocks.len(), "coupled nodes")?;
         call!(ISCreateBlock(
             self.comm,
             3,
-            blocks.len() as i32,
+            n_blocks,
             blocks.as_ptr(),
             p::PETSC_COPY_VALUES,
             &mut self.is
@@ -492,19 +449,20 @@ impl ReducedAmg {
             }
             m
         };
-        let blocks = |want: bool| -> Vec<i32> {
+        let blocks = |want: bool| -> Result<Vec<i32>, PetscError> {
             (0..is_structure.len())
                 .filter(|&b| is_structure[b] == want)
-                .map(|b| lo / 3 + b as i32)
+                .map(|b| Ok(lo / 3 + to_petsc_int(b, "node of the coupled block")?))
                 .collect()
         };
         for (name, want) in [("structure", true), ("fill", false)] {
-            let b = blocks(want);
+            let b = blocks(want)?;
+            let n_blocks = to_petsc_int(b.len(), "nodes of a split")?;
             let mut is: p::IS = null_mut();
             call!(ISCreateBlock(
                 self.comm,
                 3,
-                b.len() as i32,
+                n_blocks,
                 b.as_ptr(),
                 p::PETSC_COPY_VALUES,
                 &mut is
@@ -541,13 +499,15 @@ impl ReducedAmg {
     fn restricted_null_space(&self, ns: p::MatNullSpace, is: p::IS) -> Result<p::MatNullSpace, PetscError> {
         let modes = self.restricted_modes(ns, is)?;
         let mut out: p::MatNullSpace = null_mut();
-        let made = call!(MatNullSpaceCreate(
-            self.comm,
-            p::PETSC_FALSE,
-            modes.len() as i32,
-            modes.as_ptr(),
-            &mut out
-        ));
+        let made = to_petsc_int(modes.len(), "near-null modes").and_then(|n| {
+            call!(MatNullSpaceCreate(
+                self.comm,
+                p::PETSC_FALSE,
+                n,
+                modes.as_ptr(),
+                &mut out
+            ))
+        });
         // SAFETY: the null space keeps its own references to the vectors.
         for mut v in modes {
             unsafe { p::VecDestroy(&mut v) };
@@ -561,14 +521,14 @@ impl ReducedAmg {
         let (mut has_const, mut n, mut vecs) = (p::PETSC_FALSE, 0, std::ptr::null());
         call!(MatNullSpaceGetVecs(ns, &mut has_const, &mut n, &mut vecs))?;
         let mut modes: Vec<p::Vec> = Vec::new();
-        for k in 0..(n as usize).min(near_null_modes()?) {
+        for k in 0..to_usize(n, "near-null vectors")?.min(near_null_modes()?) {
             // SAFETY: `n` vectors owned by the null space.
             let v = unsafe { *vecs.add(k) };
-            let (mut view, mut copy): (p::Vec, p::Vec) = (null_mut(), null_mut());
-            call!(VecGetSubVector(v, is, &mut view))?;
-            call!(VecDuplicate(view, &mut copy))?;
-            call!(VecCopy(view, copy))?;
-            call!(VecRestoreSubVector(v, is, &mut view))?;
+            let mut copy: p::Vec = null_mut();
+            let view = SubVector::get(v, is)?;
+            call!(VecDuplicate(view.sub, &mut copy))?;
+            call!(VecCopy(view.sub, copy))?;
+            view.restore()?;
             for &q in &modes {
                 let mut d = 0.0;
                 call!(VecDot(copy, q, &mut d))?;
@@ -594,17 +554,53 @@ impl ReducedAmg {
             p::ISDestroy(&mut self.is);
         }
     }
+}
+
+impl PcShell for ReducedAmg {
+    const NAME: &'static CStr = REDUCED_AMG_NAME;
+
+    /// Finds the coupled nodes of the preconditioning matrix and, when they changed or the last
+    /// solve needed more than `refresh_after` applications, extracts their block (a new one
+    /// with its near-null space when they changed) and builds its preconditioner; when it
+    /// needed more than `structure_refresh_after`, factors the structure afresh and keeps the
+    /// fill's multigrid; otherwise the earlier one stays (module docs, "Lagged").
+    fn setup(&mut self, pc: p::PC) -> Result<(), PetscError> {
+        let (mut a, mut pmat): (p::Mat, p::Mat) = (null_mut(), null_mut());
+        call!(PCGetOperators(pc, &mut a, &mut pmat))?;
+        if self.flags.is_null() {
+            call!(MatCreateVecs(pmat, &mut self.flags, &mut self.diag))?;
+        }
+        mark_coupled_rows(pmat, self.flags)?;
+        call!(MatGetDiagonal(pmat, self.diag))?;
+        let rows = self.coupled_nodes()?;
+        let changed = self.any_rank(rows != self.rows)?;
+        let applies = std::mem::take(&mut self.applies);
+        let stale = applies > self.refresh_after || std::mem::take(&mut self.failed);
+        if changed || self.sub.is_null() {
+            self.new_block(pmat, rows)?;
+        } else if stale || (self.split_ready && applies > self.structure_refresh_after) {
+            call!(MatCreateSubMatrix(
+                pmat,
+                self.is,
+                self.is,
+                p::MAT_REUSE_MATRIX,
+                &mut self.sub
+            ))?;
+        } else {
+            return Ok(());
+        }
+        self.build(pc, !(stale || changed || !self.split_ready))
+    }
 
     /// y = P⁻¹ x: the decoupled rows by their diagonal, the coupled block by the multigrid.
     fn apply(&mut self, pc: p::PC, x: p::Vec, y: p::Vec) -> Result<(), PetscError> {
         self.applies += 1;
         call!(VecPointwiseDivide(y, x, self.diag))?;
-        let (mut xs, mut ys): (p::Vec, p::Vec) = (null_mut(), null_mut());
-        call!(VecGetSubVector(x, self.is, &mut xs))?;
-        call!(VecGetSubVector(y, self.is, &mut ys))?;
-        let solved = call!(KSPSolve(self.ksp, xs, ys));
-        call!(VecRestoreSubVector(x, self.is, &mut xs))?;
-        call!(VecRestoreSubVector(y, self.is, &mut ys))?;
+        let xs = SubVector::get(x, self.is)?;
+        let ys = SubVector::get(y, self.is)?;
+        let solved = call!(KSPSolve(self.ksp, xs.sub, ys.sub));
+        xs.restore()?;
+        ys.restore()?;
         solved?;
         let mut reason = 0;
         call!(KSPGetConvergedReason(self.ksp, &mut reason))?;
@@ -631,66 +627,14 @@ impl Drop for ReducedAmg {
 /// How many of the near-null space's vectors the multigrid gets (`-reduced_near_null_modes`;
 /// default the three translations, 6 adds the rotations; module docs).
 fn near_null_modes() -> Result<usize, PetscError> {
-    Ok(int_option("-reduced_near_null_modes", 3)?.max(0) as usize)
-}
-
-/// The integer option `name`, or `default` when it is not set.
-fn int_option(name: &str, default: i32) -> Result<i32, PetscError> {
-    let (name, mut set, mut n) = (CString::new(name).expect("no NUL"), p::PETSC_FALSE, default);
-    call!(PetscOptionsGetInt(
-        null_mut(),
-        std::ptr::null(),
-        name.as_ptr(),
-        &mut n,
-        &mut set
-    ))?;
-    Ok(n)
+    to_usize(
+        int_option("-reduced_near_null_modes", 3)?.max(0),
+        "-reduced_near_null_modes",
+    )
 }
 
 /// Whether the coupled block is split into structure and fill (`-reduced_split`, default
 /// true).
 fn split_wanted() -> Result<bool, PetscError> {
-    let (name, mut set, mut on) = (
-        CString::new("-reduced_split").expect("no NUL"),
-        p::PETSC_FALSE,
-        p::PETSC_TRUE,
-    );
-    call!(PetscOptionsGetBool(
-        null_mut(),
-        std::ptr::null(),
-        name.as_ptr(),
-        &mut on,
-        &mut set
-    ))?;
-    Ok(on == p::PETSC_TRUE)
-}
-
-/// The shell context of `pc`.
-///
-/// # Safety
-/// `pc` must be a shell installed by [`ReducedAmg::install`], whose context is alive.
-unsafe fn context<'a>(pc: p::PC) -> Result<&'a mut ReducedAmg, PetscError> {
-    let mut ctx: *mut std::ffi::c_void = null_mut();
-    call!(PCShellGetContext(
-        pc,
-        &mut ctx as *mut *mut std::ffi::c_void as *mut std::ffi::c_void
-    ))?;
-    // SAFETY: the context is the boxed ReducedAmg owned by the Snes (caller's contract).
-    Ok(unsafe { &mut *(ctx as *mut ReducedAmg) })
-}
-
-unsafe extern "C" fn reduced_amg_setup(pc: p::PC) -> p::PetscErrorCode {
-    // SAFETY: installed by ReducedAmg::install with its context.
-    match unsafe { context(pc) }.and_then(|amg| amg.setup(pc)) {
-        Ok(()) => 0,
-        Err(e) => e.code.max(CALLBACK_FAILED),
-    }
-}
-
-unsafe extern "C" fn reduced_amg_apply(pc: p::PC, x: p::Vec, y: p::Vec) -> p::PetscErrorCode {
-    // SAFETY: installed by ReducedAmg::install with its context.
-    match unsafe { context(pc) }.and_then(|amg| amg.apply(pc, x, y)) {
-        Ok(()) => 0,
-        Err(e) => e.code.max(CALLBACK_FAILED),
-    }
+    bool_option("-reduced_split", true)
 }

@@ -1,5 +1,5 @@
 //! Factors kept across Jacobians: the inner solver of both direct solvers
-//! ([`super::petsc::CanonicalLu`] on every rank's gathered block, [`DistributedLu`] on the
+//! ([`super::CanonicalLu`] on every rank's gathered block, [`DistributedLu`] on the
 //! distributed matrix), and the distributed LU's preconditioner shell.
 //!
 //! **Static stages: lagged LU.** Within a stage the Jacobian changes little from one Newton
@@ -26,16 +26,11 @@
 //! (`cfrd::performance`, "The seed quake (medium mesh)", compares the two).
 #![allow(unsafe_code)]
 
-use super::ffi as p;
-use super::petsc::{chk, PetscError, CALLBACK_FAILED};
-use std::ffi::{c_char, CString};
+use super::error::{call, chk, convert, PetscError};
+use super::pc_shell::{self, PcShell};
+use crate::linalg::ffi as p;
+use std::ffi::{c_char, CStr, CString};
 use std::ptr::null_mut;
-
-macro_rules! call {
-    ($f:ident ( $($arg:expr),* $(,)? )) => {
-        chk(unsafe { p::$f($($arg),*) }, stringify!($f))
-    };
-}
 
 /// Lagged factors are replaced at the next Jacobian once a solve needed more than this many
 /// GMRES iterations (each costs a forward and a backward substitution and a matrix product);
@@ -216,7 +211,7 @@ impl LaggedLu {
         let mut total = its;
         if reason < 0 && self.lagged {
             if self.factor(false)? != 0 {
-                self.last_iterations = total as u32;
+                self.last_iterations = convert(total, "Krylov iterations")?;
                 return Ok(false);
             }
             call!(KSPSolve(self.ksp, rhs, solution))?;
@@ -226,7 +221,7 @@ impl LaggedLu {
         } else if self.lagged && its > self.refactor_after {
             self.refactor = true;
         }
-        self.last_iterations = total.max(1) as u32;
+        self.last_iterations = convert(total.max(1), "Krylov iterations")?;
         Ok(reason >= 0)
     }
 
@@ -303,7 +298,7 @@ pub struct DistributedLu {
 }
 
 /// The name the distributed LU's shell reports (`-ksp_view`), and by which it is recognised.
-pub const DISTRIBUTED_LU_NAME: &[u8] = b"distributed LU (MUMPS on all ranks)\0";
+pub const DISTRIBUTED_LU_NAME: &CStr = c"distributed LU (MUMPS on all ranks)";
 
 impl DistributedLu {
     /// The shell's state on communicator `comm`.
@@ -327,15 +322,7 @@ impl DistributedLu {
 
     /// Makes `ksp` apply this solver (`preonly` with the shell preconditioner).
     pub(crate) fn install(&self, ksp: p::KSP) -> Result<(), PetscError> {
-        call!(KSPSetType(ksp, p::KSPPREONLY.as_ptr() as *const c_char))?;
-        let mut pc: p::PC = null_mut();
-        call!(KSPGetPC(ksp, &mut pc))?;
-        call!(PCSetType(pc, p::PCSHELL.as_ptr() as *const c_char))?;
-        let ctx = self as *const DistributedLu as *mut std::ffi::c_void;
-        call!(PCShellSetContext(pc, ctx))?;
-        call!(PCShellSetSetUp(pc, Some(distributed_lu_setup)))?;
-        call!(PCShellSetApply(pc, Some(distributed_lu_apply)))?;
-        call!(PCShellSetName(pc, DISTRIBUTED_LU_NAME.as_ptr() as *const c_char))
+        pc_shell::install_preonly(ksp, self)
     }
 
     /// Krylov iterations of the last solve (1 for a direct solve).
@@ -347,6 +334,10 @@ impl DistributedLu {
     pub fn take_factorizations(&mut self) -> u64 {
         self.inner.take_factorizations()
     }
+}
+
+impl PcShell for DistributedLu {
+    const NAME: &'static CStr = DISTRIBUTED_LU_NAME;
 
     /// Factors the preconditioning matrix of `pc`, or keeps the earlier factors.
     fn setup(&mut self, pc: p::PC) -> Result<(), PetscError> {
@@ -371,35 +362,5 @@ impl DistributedLu {
             call!(PCSetFailedReason(pc, p::PC_SUBPC_ERROR))?;
         }
         Ok(())
-    }
-}
-
-/// The shell context of `pc` as the distributed LU.
-///
-/// # Safety
-/// `pc` must be a shell installed by [`DistributedLu::install`], whose context is alive.
-pub(super) unsafe fn distributed_context<'a>(pc: p::PC) -> Result<&'a mut DistributedLu, PetscError> {
-    let mut ctx: *mut std::ffi::c_void = null_mut();
-    call!(PCShellGetContext(
-        pc,
-        &mut ctx as *mut *mut std::ffi::c_void as *mut std::ffi::c_void
-    ))?;
-    // SAFETY: the context is the boxed DistributedLu owned by the Snes (caller's contract).
-    Ok(unsafe { &mut *(ctx as *mut DistributedLu) })
-}
-
-unsafe extern "C" fn distributed_lu_setup(pc: p::PC) -> p::PetscErrorCode {
-    // SAFETY: installed by DistributedLu::install with its context.
-    match unsafe { distributed_context(pc) }.and_then(|lu| lu.setup(pc)) {
-        Ok(()) => 0,
-        Err(e) => e.code.max(CALLBACK_FAILED),
-    }
-}
-
-unsafe extern "C" fn distributed_lu_apply(pc: p::PC, x: p::Vec, y: p::Vec) -> p::PetscErrorCode {
-    // SAFETY: installed by DistributedLu::install with its context.
-    match unsafe { distributed_context(pc) }.and_then(|lu| lu.apply(pc, x, y)) {
-        Ok(()) => 0,
-        Err(e) => e.code.max(CALLBACK_FAILED),
     }
 }
