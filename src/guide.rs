@@ -304,7 +304,7 @@
 //! * `linear_solver: reduced_amg`: GMRES (CG for symmetric tangents) preconditioned on the
 //!   coupled rows only, the rows of unplaced nodes and constrained DOFs solved by their
 //!   diagonal. The interface, joint and slab nodes are factored (SuperLU_DIST over the ranks), the
-//!   fill gets algebraic multigrid (GAMG), one after the other ([`crate::linalg::reduced_amg`]).
+//!   fill gets algebraic multigrid (GAMG), one after the other ([`crate::linalg::petsc::reduced_amg`]).
 //!   Every rank holds only its share, so memory grows with the mesh and falls with the ranks:
 //!   on the medium seed mesh, whose scenes use it, under half the canonical LU's memory per
 //!   rank and time (medium hyperbolic scene: 291.0 s and 269 MiB against 614.3 s and 597 MiB,
@@ -325,7 +325,7 @@
 //!   ranks together. Each rank holds only its share of the matrix and the factors, so a mesh
 //!   whose factors do not fit one rank's memory can use more ranks (or nodes). The factors are
 //!   reused across Jacobians as with the canonical LU (`reuse_factorization`;
-//!   [`crate::linalg::lagged_lu`]). Results agree with the canonical LU's, and between rank
+//!   [`crate::linalg::petsc::lagged_lu`]). Results agree with the canonical LU's, and between rank
 //!   counts and runs, to the factorization's rounding, not bit for bit: MUMPS's parallel
 //!   factorization sums in an order that depends on message timing. Its options take the
 //!   prefix `distributed_` (`-distributed_mat_mumps_icntl_14 50` for more working memory,
@@ -344,7 +344,7 @@
 //! [`crate::performance`]). The canonical solver stays rank-count independent. Their options
 //! there take the prefixes `canonical_dynamic_` and `distributed_dynamic_`:
 //! `-canonical_dynamic_pc_type lu -canonical_dynamic_pc_factor_mat_solver_type mumps` brings
-//! back lagged complete factors ([`crate::linalg::lagged_lu`]).
+//! back lagged complete factors ([`crate::linalg::petsc::lagged_lu`]).
 //!
 //! PETSc options go into `solver.petsc_options`, or follow the command: every single-dash word
 //! with more than one letter is a PETSc option, taking the next word as its value unless that

@@ -251,7 +251,7 @@
 //! from slab stage I on about 80 % of a stage went into the MUMPS factorization (`perf`).
 //!
 //! **Forcing terms of the GP-interface scenes.** The inexact Newton solves corrections to
-//! Eisenstat–Walker forcing terms of at most 0.03 ([`crate::linalg::reduced_amg`]). The medium
+//! Eisenstat–Walker forcing terms of at most 0.03 ([`crate::linalg::petsc::reduced_amg`]). The medium
 //! GP-interface scene against its canonical-LU run (build of e25ea71, above), largest
 //! differences of the slab table:
 //!
@@ -529,7 +529,7 @@
 //! `seed_coarse_mohr_coulomb_quake.yaml`): construction and impoundment, then the 20 s record
 //! `inputs/accel/seed_quake.csv` at Δt = 0.01 s (Newmark 1959 average acceleration, consistent
 //! mass, Rayleigh 2 % at 1 and 5 Hz). In the quake GMRES (to 1e-6) is preconditioned by ILU(0)
-//! of each Jacobian ([`crate::linalg::lagged_lu`]), Newton starts from the converged
+//! of each Jacobian ([`crate::linalg::petsc::lagged_lu`]), Newton starts from the converged
 //! displacement and takes the full step first. The tables restart the GP quake from its
 //! post-impoundment checkpoint (`/usr/bin/time -v mpirun -n 2 cfrd run
 //! inputs/scenes/seed_coarse_gp_interface_quake.yaml -o OUT --restart CKPT`), one run after the

@@ -588,7 +588,7 @@ fn a_quake_whose_linear_solves_fail_is_cut_back_and_reported_with_petscs_reason(
 
 /// The small GP-interface dam's quake with `linear_solver: distributed_lu`, whose dynamic
 /// stage preconditions GMRES by additive Schwarz with ILU(0) on overlapping subdomains of the
-/// distributed Jacobian (`cfrd::linalg::lagged_lu`; with block Jacobi, no overlap, it failed
+/// distributed Jacobian (`cfrd::linalg::petsc::lagged_lu`; with block Jacobi, no overlap, it failed
 /// at the quake's second step on 2 ranks): it converges at every step on 1 and 2 ranks. On 1
 /// rank, where MUMPS's factors are deterministic, its displacement differs from that of the
 /// canonical solver's run by no more in the quake than in the static stages, where both

@@ -298,7 +298,7 @@ pub struct SolverSpec {
     pub linear_solver: LinearSolver,
     /// With `canonical_lu` or `distributed_lu`: keep the factors of an earlier Jacobian of the
     /// same stage as the preconditioner of GMRES on the current one, and factor again only when
-    /// GMRES needs more than a few iterations (`linalg::lagged_lu`). Default true; `false`
+    /// GMRES needs more than a few iterations (`linalg::petsc::lagged_lu`). Default true; `false`
     /// factors every Jacobian (an exact direct solve per Newton iteration).
     #[serde(default = "yes")]
     pub reuse_factorization: bool,

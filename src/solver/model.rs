@@ -208,7 +208,7 @@ impl<'a> Model<'a> {
     }
 
     /// The owned DOFs (global indices, increasing) of the stiff structure that the reduced
-    /// multigrid factors apart from the fill ([`crate::linalg::reduced_amg`]): the nodes of
+    /// multigrid factors apart from the fill ([`crate::linalg::petsc::reduced_amg`]): the nodes of
     /// zero-thickness elements (interfaces and joints, both faces) and of the blocks with
     /// incompatible modes (the face slab).
     pub(super) fn structure_dofs(&self) -> Vec<i32> {

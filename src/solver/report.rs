@@ -34,7 +34,7 @@ pub struct SolveReport {
     /// Numeric factorizations of the direct solvers (the reduced multigrid: of its structure).
     #[serde(default)]
     pub factorizations: u64,
-    /// Set-ups of the reduced multigrid's multigrid ([`crate::linalg::reduced_amg`], "Lagged").
+    /// Set-ups of the reduced multigrid's multigrid ([`crate::linalg::petsc::reduced_amg`], "Lagged").
     #[serde(default)]
     pub multigrid_builds: u64,
     /// Wall-clock seconds of each completed stage, for the run summary.

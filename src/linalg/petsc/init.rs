@@ -10,7 +10,7 @@ use std::ffi::{c_char, CStr, CString};
 use std::ptr::{null, null_mut};
 
 /// One OpenMP thread per MPI rank, unless `OMP_NUM_THREADS` says otherwise: SuperLU_DIST (the
-/// reduced multigrid's structure factorization, [`crate::linalg::reduced_amg`]) is built with
+/// reduced multigrid's structure factorization, the `reduced_amg` module) is built with
 /// OpenMP, whose default of one thread per core makes every rank's threads compete for the
 /// cores the other ranks run on (measured: the small default dam on 2 ranks had not ended after
 /// 9 min, against 9 s with one thread). `omp_set_num_threads` is looked up at run time, so a

@@ -12,7 +12,7 @@
 //! `-<prefix>ksp_max_it N` and `-<prefix>ksp_rtol R` change the three numbers.
 //!
 //! **Dynamic stages: incomplete LU.** The Jacobian of a time step, K_t + shift_v·C +
-//! shift_a·M (spec seismic §3.4), is dominated by the mass term, so an incomplete
+//! shift_a·M (Newmark's effective stiffness), is dominated by the mass term, so an incomplete
 //! factorization of the current Jacobian (ILU(0); on a distributed matrix, additive Schwarz
 //! with ILU(0) on subdomains overlapping by [`SCHWARZ_OVERLAP`] layers) preconditions GMRES
 //! well: it is factored afresh at every Jacobian, costs
@@ -46,9 +46,8 @@ const LAGGED_RTOL: f64 = 1e-9;
 /// In a dynamic stage: refactor only after solves of more GMRES iterations than this, to the
 /// relative tolerance [`TIME_STEPPING_RTOL`]. The GP rockfill switches between loading and
 /// unloading from one time step to the next all over the dam, so factors of the last step's
-/// Jacobian take 18–27 GMRES iterations to 1e-9 and were renewed at every other step; on the
-/// medium seed quake these two settings took its first 1.56 s in 309 s instead of 406 s with
-/// the same Newton iterations (`cfrd::performance`, "The seed quake (medium mesh)").
+/// Jacobian take 18–27 GMRES iterations to 1e-9 and were renewed at every other step; these
+/// two settings renew them only where GMRES needs it.
 const TIME_STEPPING_REFACTOR_AFTER: i32 = 30;
 /// GMRES's relative tolerance in a dynamic stage (lagged or incomplete factors): still ten
 /// times below the seed scenes' Newton tolerance.

@@ -81,7 +81,7 @@ fn configure_ksp(ksp: p::KSP, rtol: f64, max_it: u32, symmetric: bool) -> Result
     call!(KSPSetNormType(ksp, p::KSP_NORM_UNPRECONDITIONED))
 }
 
-/// The reduced multigrid's inexact-Newton defaults (`cfrd::linalg::reduced_amg`, "Inexact
+/// The reduced multigrid's inexact-Newton defaults (`cfrd::linalg::petsc::reduced_amg`, "Inexact
 /// Newton"): PETSc's Eisenstat–Walker forcing terms, none looser than 0.03.
 const EISENSTAT_WALKER: [(&str, &str); 3] = [
     ("-snes_ksp_ew", "true"),

@@ -52,8 +52,7 @@
 //! interfaces change the values, not the pattern. The run summary counts the structure's
 //! factorizations as `factorizations` and the multigrid's set-ups as `multigrid_builds`.
 //! Why (the fine seed mesh's `fill_051` from the checkpoint after slab stage I, 2 ranks, one
-//! run each, the machine otherwise idle; prototypes of this code selected by options;
-//! [`crate::performance`]): with the whole preconditioner lagged as above 134 GMRES
+//! run each, the machine otherwise idle; prototypes of this code selected by options): with the whole preconditioner lagged as above 134 GMRES
 //! iterations for 10 Newton iterations; built afresh at every Jacobian 87; the multigrid
 //! afresh on lagged structure factors 145; the structure afresh on the lagged multigrid 88,
 //! in 14.2 s of linear solves against 18.2 s. The hyperbolic interface's tangent follows its
@@ -64,7 +63,7 @@
 //! numbers are known), so a structure block that a state leaves singular, or nearly so,
 //! meets a zero pivot. This happened on the medium GP-interface seed scene with looser
 //! forcing terms (`-snes_ksp_ew_rtolmax 0.05`): a predicted start of `slab_3` with internal
-//! forces of 3.8e26 N (now rejected, [`crate::solver::Problem::solve_step`]) gave
+//! forces of 3.8e26 N (such starts are now dropped by the solver's step) gave
 //! `U(i,i) is exactly zero`, and every cut-back after it failed the same way (PC failed,
 //! PETSc reason −11) until the run stopped. Pivots below √ε·‖A‖ are therefore replaced by
 //! that value (`-mat_superlu_dist_replacetinypivot`): the factors stay a preconditioner, and
@@ -116,7 +115,7 @@
 //! 0.01` in their `petsc_options`): with 0.03 the medium one's slab table after impoundment lay
 //! 0.079 MPa from the canonical LU's, with 0.01 within 0.018 MPa, where the construction agrees
 //! to 6e-4 MPa either way (the slipping GP interface follows the converged states;
-//! `crate::performance`, "Side by side: forcing terms of 0.03 and the predicted-start guard").
+//! `crate::performance`, "Linear solvers on the seed dam").
 //!
 //! The earlier choice of 0.01, measured on the medium hyperbolic scene, 2 ranks, restarted
 //! from the checkpoint after slab stage I (`cfrd run inputs/scenes/seed_medium_hyperbolic.yaml --restart CK
