@@ -14,7 +14,7 @@
 //! | [`profiles`] | observer: the static figures at the run's end |
 //! | [`progress`] | observer: progress lines and bar |
 //! | [`summary`] | observer: `summary.json` and the closing lines |
-//! | [`bench`] | `cfrd bench solver` |
+//! | [`mod@bench`] | `cfrd bench solver` |
 //!
 //! Every input error is decided collectively ([`crate::parallel::any_error`]), so all ranks
 //! stop together with exit code 2 and rank 0 prints the message.
