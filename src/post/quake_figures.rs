@@ -105,11 +105,8 @@ struct QuakeOut<'a> {
 
 /// Fig. 12: the section outline before and after the quake.
 fn fig12(out: &QuakeOut, files: &mut Vec<PathBuf>) -> Result<(), String> {
-    let QuakeOut {
-        mesh, spec, q, dir, ..
-    } = out;
-    let outline = section_outline(mesh, spec);
-    let res = residual(&q.before, q.after());
+    let (mesh, dir, res) = (out.mesh, out.dir, &out.res);
+    let outline = section_outline(mesh, out.spec);
     let du = |n: usize| [res.displacement[3 * n], res.displacement[3 * n + 2]];
     let zs = outline.iter().map(|&n| mesh.coords[n][2]);
     let height = zs.clone().fold(f64::NEG_INFINITY, f64::max) - zs.fold(f64::INFINITY, f64::min);
@@ -154,42 +151,28 @@ fn fig12(out: &QuakeOut, files: &mut Vec<PathBuf>) -> Result<(), String> {
 
 /// Fig. 13: slab profiles before, after and induced by the residual deformation.
 fn fig13(out: &QuakeOut, files: &mut Vec<PathBuf>) -> Result<(), String> {
-    let QuakeOut {
-        mesh,
-        spec,
-        q,
-        res,
-        dir,
-    } = out;
     let states = [
-        ("before the quake", &q.before),
-        ("after the quake", q.after()),
-        ("residual", res),
+        ("before the quake", &out.q.before),
+        ("after the quake", out.q.after()),
+        ("residual", &out.res),
     ];
-    let (csv, panels) = slab_profiles(mesh, spec, &states);
-    csv_out(dir, files, "fig13_residual_slab.csv", csv)?;
+    let (csv, panels) = slab_profiles(out.mesh, out.spec, &states);
+    csv_out(out.dir, files, "fig13_residual_slab.csv", csv)?;
     let mut fig =
         Figure::new("Slab at the central section: residual = after - before the quake (seed Fig. 13)");
     for p in panels {
         fig.push(p);
     }
-    png_out(dir, files, "fig13_residual_slab.png", fig.columns(3))?;
+    png_out(out.dir, files, "fig13_residual_slab.png", fig.columns(3))?;
     Ok(())
 }
 
-/// Fig. 14: stress history of a slab probe element `e`.
 /// Figs. 15–17: the residual interface state of every interface element, as a table and as
 /// plots over the unfolded face (y along the axis, z up).
 fn figs15_17(out: &QuakeOut, files: &mut Vec<PathBuf>) -> Result<(), String> {
-    let QuakeOut {
-        mesh,
-        spec,
-        q,
-        res,
-        dir,
-    } = out;
-    let after = q.after();
-    let iface = elements_with_prefix(mesh, &spec.interface_prefix);
+    let (mesh, dir, res) = (out.mesh, out.dir, &out.res);
+    let (before, after) = (&out.q.before, out.q.after());
+    let iface = elements_with_prefix(mesh, &out.spec.interface_prefix);
     let mut csv = String::from(
         "element_id,x_m,y_m,z_m,delta_s_m,delta_a_m,delta_n_m,opening_before_m,opening_after_m,normal_excluding_opening_m\n",
     );
@@ -207,7 +190,7 @@ fn figs15_17(out: &QuakeOut, files: &mut Vec<PathBuf>) -> Result<(), String> {
             d[0],
             d[1],
             d[2],
-            q.before.interface_opening[e],
+            before.interface_opening[e],
             after.interface_opening[e]
         );
     }

@@ -207,12 +207,8 @@ fn fig14<'a>(
     p: &QuakeProbe,
     series: impl Iterator<Item = (f64, &'a [f64])>,
 ) -> Result<(), String> {
-    let ProbeOut {
-        mesh,
-        sampling,
-        dir,
-        ref mut files,
-    } = *out;
+    let (mesh, sampling, dir) = (out.mesh, out.sampling, out.dir);
+    let files = &mut *out.files;
     let frame = slab_frame(&mesh.element_coords(p.element));
     let mut csv = format!("{sampling}\nt_s,sigma_slope_Pa,sigma_axis_Pa\n");
     let (mut s, mut a) = (Vec::new(), Vec::new());
@@ -246,14 +242,9 @@ fn fig18<'a>(
     p: &QuakeProbe,
     series: impl Iterator<Item = (f64, &'a [f64])>,
 ) -> Result<(), String> {
-    let ProbeOut {
-        mesh,
-        sampling,
-        dir,
-        ref mut files,
-    } = *out;
-    let mut csv =
-        format!("{sampling}\nt_s,sigma_n_Pa,tau_s_Pa,tau_a_Pa,delta_s_m,delta_a_m,delta_n_m,opening_m\n");
+    let header = "t_s,sigma_n_Pa,tau_s_Pa,tau_a_Pa,delta_s_m,delta_a_m,delta_n_m,opening_m";
+    let mut csv = format!("{}\n{header}\n", out.sampling);
+    let (mesh, dir, files) = (out.mesh, out.dir, &mut *out.files);
     let mut cols: [Vec<(f64, f64)>; 7] = Default::default();
     let scale = [1e-3, 1e-3, 1e-3, 1e3, 1e3, 1e3, 1e3];
     for (t, v) in series {
