@@ -4,6 +4,7 @@
 #![allow(unsafe_code)]
 
 use super::error::{call, chk, count_from_double, to_usize, PetscError};
+use super::loan::{lent_slice_mut, Lent, Loan};
 use super::matrix::Matrix;
 use crate::linalg::ffi as p;
 use std::ffi::c_char;
@@ -52,7 +53,7 @@ impl CsrPart {
 }
 
 /// The compressed rows of a sequential AIJ matrix lent by PETSc (`MatGetRowIJ`, unshifted and
-/// as stored), given back by [`RowIj::restore`] or, on an early return, on drop.
+/// as stored).
 struct RowIj {
     m: p::Mat,
     /// Rows.
@@ -62,19 +63,17 @@ struct RowIj {
     /// Column indices, `ia[n]`.
     ja: *const p::PetscInt,
     done: p::PetscBool,
-    lent: bool,
 }
 
 impl RowIj {
     /// The compressed rows of `m`; an error where the matrix gives none.
-    fn get(m: p::Mat) -> Result<RowIj, PetscError> {
+    fn get(m: p::Mat) -> Result<Lent<RowIj>, PetscError> {
         let mut ij = RowIj {
             m,
             n: 0,
             ia: null(),
             ja: null(),
             done: p::PETSC_FALSE,
-            lent: false,
         };
         ij.call(p::MatGetRowIJ, "MatGetRowIJ")?;
         if ij.done != p::PETSC_TRUE {
@@ -84,8 +83,7 @@ impl RowIj {
                 message: "the matrix gives no compressed rows".into(),
             });
         }
-        ij.lent = true;
-        Ok(ij)
+        Ok(Lent::new(ij))
     }
 
     /// Calls `f` (`MatGetRowIJ` or `MatRestoreRowIJ`, which take the same arguments) on the
@@ -96,24 +94,11 @@ impl RowIj {
         // SAFETY: `m` is a valid sequential AIJ matrix and PETSc writes only the four outputs.
         chk(unsafe { f(self.m, 0, no, no, n, ia, ja, done) }, name)
     }
-
-    fn give_back(&mut self) -> Result<(), PetscError> {
-        self.lent = false;
-        self.call(p::MatRestoreRowIJ, "MatRestoreRowIJ")
-    }
-
-    /// Gives the rows back to PETSc.
-    fn restore(mut self) -> Result<(), PetscError> {
-        self.give_back()
-    }
 }
 
-impl Drop for RowIj {
-    fn drop(&mut self) {
-        if self.lent {
-            // an error is already on its way out; this one would only hide it
-            let _ = self.give_back();
-        }
+impl Loan for RowIj {
+    fn give_back(&mut self) -> Result<(), PetscError> {
+        self.call(p::MatRestoreRowIJ, "MatRestoreRowIJ")
     }
 }
 
@@ -129,58 +114,35 @@ type RowIjFn = unsafe extern "C" fn(
     *mut p::PetscBool,
 ) -> p::PetscErrorCode;
 
-/// The values of a sequential AIJ matrix lent by PETSc (`MatSeqAIJGetArray`), given back by
-/// [`SeqValues::restore`] or, on an early return, on drop.
+/// The values of a sequential AIJ matrix lent by PETSc (`MatSeqAIJGetArray`).
 struct SeqValues {
     m: p::Mat,
     ptr: *mut f64,
     len: usize,
-    lent: bool,
 }
 
 impl SeqValues {
     /// The values of `m`, its used nonzeros.
-    fn get(m: p::Mat) -> Result<SeqValues, PetscError> {
+    fn get(m: p::Mat) -> Result<Lent<SeqValues>, PetscError> {
         // SAFETY: MatInfo holds only doubles, for which zero bits are a valid value.
         let mut info: p::MatInfo = unsafe { std::mem::zeroed() };
         call!(MatGetInfo(m, p::MAT_LOCAL, &mut info))?;
         let mut ptr: *mut f64 = null_mut();
         call!(MatSeqAIJGetArray(m, &mut ptr))?;
-        let mut values = SeqValues {
-            m,
-            ptr,
-            len: 0,
-            lent: true,
-        };
+        let mut values = Lent::new(SeqValues { m, ptr, len: 0 });
         values.len = count_from_double(info.nz_used, "used nonzeros")?;
         Ok(values)
     }
 
     fn slice(&mut self) -> &mut [f64] {
-        if self.len == 0 || self.ptr.is_null() {
-            return &mut [];
-        }
         // SAFETY: PETSc lent `len` values (the used nonzeros) until MatSeqAIJRestoreArray.
-        unsafe { std::slice::from_raw_parts_mut(self.ptr, self.len) }
-    }
-
-    fn give_back(&mut self) -> Result<(), PetscError> {
-        self.lent = false;
-        call!(MatSeqAIJRestoreArray(self.m, &mut self.ptr))
-    }
-
-    /// Gives the values back to PETSc.
-    fn restore(mut self) -> Result<(), PetscError> {
-        self.give_back()
+        unsafe { lent_slice_mut(self.ptr, self.len) }
     }
 }
 
-impl Drop for SeqValues {
-    fn drop(&mut self) {
-        if self.lent {
-            // an error is already on its way out; this one would only hide it
-            let _ = self.give_back();
-        }
+impl Loan for SeqValues {
+    fn give_back(&mut self) -> Result<(), PetscError> {
+        call!(MatSeqAIJRestoreArray(self.m, &mut self.ptr))
     }
 }
 

@@ -4,6 +4,7 @@
 
 use super::error::{call, to_petsc_int, to_usize, PetscError};
 use super::init::Petsc;
+use super::loan::{lent_slice, Lent, Loan};
 use super::vector::Vector;
 use crate::linalg::ffi as p;
 use std::ffi::c_char;
@@ -197,8 +198,7 @@ impl Drop for Matrix {
     }
 }
 
-/// One owned row of an assembled matrix lent by PETSc (`MatGetRow`), given back by
-/// [`MatRow::restore`] or, on an early return, on drop.
+/// One owned row of an assembled matrix lent by PETSc (`MatGetRow`).
 pub(super) struct MatRow {
     m: p::Mat,
     row: p::PetscInt,
@@ -207,24 +207,22 @@ pub(super) struct MatRow {
     vals: *const f64,
     /// The entries of the row (0 when PETSc gave none).
     len: usize,
-    lent: bool,
 }
 
 impl MatRow {
     /// The global row `row` of `m` (owned by this rank).
-    pub(super) fn get(m: p::Mat, row: p::PetscInt) -> Result<MatRow, PetscError> {
+    pub(super) fn get(m: p::Mat, row: p::PetscInt) -> Result<Lent<MatRow>, PetscError> {
         let (mut ncols, mut cols, mut vals): (p::PetscInt, *const p::PetscInt, *const f64) =
             (0, null(), null());
         call!(MatGetRow(m, row, &mut ncols, &mut cols, &mut vals))?;
-        let mut lent = MatRow {
+        let mut lent = Lent::new(MatRow {
             m,
             row,
             ncols,
             cols,
             vals,
             len: 0,
-            lent: true,
-        };
+        });
         if ncols > 0 {
             lent.len = to_usize(ncols, "entries of a row")?;
         }
@@ -233,24 +231,19 @@ impl MatRow {
 
     /// The global columns of the row's entries.
     pub(super) fn cols(&self) -> &[p::PetscInt] {
-        if self.len == 0 {
-            return &[];
-        }
         // SAFETY: MatGetRow returned `len` column indices, valid until MatRestoreRow.
-        unsafe { std::slice::from_raw_parts(self.cols, self.len) }
+        unsafe { lent_slice(self.cols, self.len) }
     }
 
     /// The values of the row's entries.
     pub(super) fn values(&self) -> &[f64] {
-        if self.len == 0 {
-            return &[];
-        }
         // SAFETY: MatGetRow returned `len` values, valid until MatRestoreRow.
-        unsafe { std::slice::from_raw_parts(self.vals, self.len) }
+        unsafe { lent_slice(self.vals, self.len) }
     }
+}
 
+impl Loan for MatRow {
     fn give_back(&mut self) -> Result<(), PetscError> {
-        self.lent = false;
         call!(MatRestoreRow(
             self.m,
             self.row,
@@ -258,19 +251,5 @@ impl MatRow {
             &mut self.cols,
             &mut self.vals
         ))
-    }
-
-    /// Gives the row back to PETSc.
-    pub(super) fn restore(mut self) -> Result<(), PetscError> {
-        self.give_back()
-    }
-}
-
-impl Drop for MatRow {
-    fn drop(&mut self) {
-        if self.lent {
-            // an error is already on its way out; this one would only hide it
-            let _ = self.give_back();
-        }
     }
 }

@@ -41,6 +41,7 @@ mod gather;
 mod init;
 pub mod lagged_lu;
 mod line_search;
+mod loan;
 mod matrix;
 mod method;
 mod options;

@@ -4,6 +4,7 @@
 
 use super::error::{call, to_petsc_int, to_usize, PetscError};
 use super::init::Petsc;
+use super::loan::{lent_slice, lent_slice_mut, Lent, Loan};
 use crate::linalg::ffi as p;
 use std::ffi::c_char;
 use std::mem::ManuallyDrop;
@@ -146,147 +147,80 @@ impl Drop for Vector {
     }
 }
 
-/// A vector's local array lent for reading (`VecGetArrayRead`), given back by
-/// [`ReadArray::restore`] or, on an early return, on drop.
+/// A vector's local array lent for reading (`VecGetArrayRead`).
 struct ReadArray {
     v: p::Vec,
     ptr: *const f64,
     len: usize,
-    lent: bool,
 }
 
 impl ReadArray {
     /// The local array of `v`, which holds `len` entries on this rank.
-    fn get(v: p::Vec, len: usize) -> Result<ReadArray, PetscError> {
+    fn get(v: p::Vec, len: usize) -> Result<Lent<ReadArray>, PetscError> {
         let mut ptr: *const f64 = null();
         call!(VecGetArrayRead(v, &mut ptr))?;
-        Ok(ReadArray {
-            v,
-            ptr,
-            len,
-            lent: true,
-        })
+        Ok(Lent::new(ReadArray { v, ptr, len }))
     }
 
     fn slice(&self) -> &[f64] {
-        if self.len == 0 || self.ptr.is_null() {
-            return &[];
-        }
-        // SAFETY: PETSc guarantees `len` readable entries until VecRestoreArrayRead (the
-        // pointer may be null when the rank holds no entries).
-        unsafe { std::slice::from_raw_parts(self.ptr, self.len) }
+        // SAFETY: PETSc guarantees `len` readable entries until VecRestoreArrayRead.
+        unsafe { lent_slice(self.ptr, self.len) }
     }
+}
 
+impl Loan for ReadArray {
     fn give_back(&mut self) -> Result<(), PetscError> {
-        self.lent = false;
         call!(VecRestoreArrayRead(self.v, &mut self.ptr))
     }
-
-    /// Gives the array back to PETSc.
-    fn restore(mut self) -> Result<(), PetscError> {
-        self.give_back()
-    }
 }
 
-impl Drop for ReadArray {
-    fn drop(&mut self) {
-        if self.lent {
-            // an error is already on its way out; this one would only hide it
-            let _ = self.give_back();
-        }
-    }
-}
-
-/// A vector's local array lent for writing (`VecGetArray`), given back by
-/// [`WriteArray::restore`] or, on an early return, on drop.
+/// A vector's local array lent for writing (`VecGetArray`).
 struct WriteArray {
     v: p::Vec,
     ptr: *mut f64,
     len: usize,
-    lent: bool,
 }
 
 impl WriteArray {
     /// The local array of `v`, which holds `len` entries on this rank.
-    fn get(v: p::Vec, len: usize) -> Result<WriteArray, PetscError> {
+    fn get(v: p::Vec, len: usize) -> Result<Lent<WriteArray>, PetscError> {
         let mut ptr: *mut f64 = null_mut();
         call!(VecGetArray(v, &mut ptr))?;
-        Ok(WriteArray {
-            v,
-            ptr,
-            len,
-            lent: true,
-        })
+        Ok(Lent::new(WriteArray { v, ptr, len }))
     }
 
     fn slice(&mut self) -> &mut [f64] {
-        if self.len == 0 || self.ptr.is_null() {
-            return &mut [];
-        }
-        // SAFETY: PETSc guarantees `len` writable entries until VecRestoreArray (the pointer
-        // may be null when the rank holds no entries).
-        unsafe { std::slice::from_raw_parts_mut(self.ptr, self.len) }
+        // SAFETY: PETSc guarantees `len` writable entries until VecRestoreArray.
+        unsafe { lent_slice_mut(self.ptr, self.len) }
     }
+}
 
+impl Loan for WriteArray {
     fn give_back(&mut self) -> Result<(), PetscError> {
-        self.lent = false;
         call!(VecRestoreArray(self.v, &mut self.ptr))
     }
-
-    /// Gives the array back to PETSc.
-    fn restore(mut self) -> Result<(), PetscError> {
-        self.give_back()
-    }
 }
 
-impl Drop for WriteArray {
-    fn drop(&mut self) {
-        if self.lent {
-            // an error is already on its way out; this one would only hide it
-            let _ = self.give_back();
-        }
-    }
-}
-
-/// The entries `is` of a vector as a vector of their own (`VecGetSubVector`), given back by
-/// [`SubVector::restore`] or, on an early return, on drop.
+/// The entries `is` of a vector as a vector of their own (`VecGetSubVector`; the values
+/// written into it go back with it).
 pub(super) struct SubVector {
     v: p::Vec,
     is: p::IS,
     /// The subvector (PETSc's, valid until given back).
     pub(super) sub: p::Vec,
-    lent: bool,
 }
 
 impl SubVector {
     /// The entries `is` of `v`.
-    pub(super) fn get(v: p::Vec, is: p::IS) -> Result<SubVector, PetscError> {
+    pub(super) fn get(v: p::Vec, is: p::IS) -> Result<Lent<SubVector>, PetscError> {
         let mut sub: p::Vec = null_mut();
         call!(VecGetSubVector(v, is, &mut sub))?;
-        Ok(SubVector {
-            v,
-            is,
-            sub,
-            lent: true,
-        })
-    }
-
-    fn give_back(&mut self) -> Result<(), PetscError> {
-        self.lent = false;
-        call!(VecRestoreSubVector(self.v, self.is, &mut self.sub))
-    }
-
-    /// Gives the subvector back to PETSc (with the values written into it).
-    pub(super) fn restore(mut self) -> Result<(), PetscError> {
-        self.give_back()
+        Ok(Lent::new(SubVector { v, is, sub }))
     }
 }
 
-impl Drop for SubVector {
-    fn drop(&mut self) {
-        if self.lent {
-            // an error is already on its way out; this one would only hide it
-            let _ = self.give_back();
-        }
+impl Loan for SubVector {
+    fn give_back(&mut self) -> Result<(), PetscError> {
+        call!(VecRestoreSubVector(self.v, self.is, &mut self.sub))
     }
 }
