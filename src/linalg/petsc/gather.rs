@@ -37,20 +37,9 @@ impl Gather {
 
     /// Gathers the entries of `x` and returns them in the order of `from`.
     pub fn gather<'a>(&'a mut self, x: &Vector) -> Result<&'a Vector, PetscError> {
-        call!(VecScatterBegin(
-            self.ctx,
-            x.raw,
-            self.local.raw,
-            p::INSERT_VALUES,
-            p::SCATTER_FORWARD
-        ))?;
-        call!(VecScatterEnd(
-            self.ctx,
-            x.raw,
-            self.local.raw,
-            p::INSERT_VALUES,
-            p::SCATTER_FORWARD
-        ))?;
+        let (ctx, x, y) = (self.ctx, x.raw, self.local.raw);
+        call!(VecScatterBegin(ctx, x, y, p::INSERT_VALUES, p::SCATTER_FORWARD))?;
+        call!(VecScatterEnd(ctx, x, y, p::INSERT_VALUES, p::SCATTER_FORWARD))?;
         Ok(&self.local)
     }
 
