@@ -122,7 +122,7 @@ done
 # frequencies are 1.1-1.4 Hz). Probes of the seed's dynamic figures: slab element F-A at 2813 m
 # (Fig. 14), interface elements I-B at the left bank at 2809 m, I-C at 2838 m (Figs. 18-19) and
 # I-D at the crest, 2852 m (Fig. 20), besides I-A at 2711 m; F-A, I-C and I-D at the central
-# section (src/quake_figures.rs).
+# section (src/post/quake_figures.rs).
 quake_probes="[ { name: I-A, elevation: 2711.0 }, { name: I-B, elevation: 2809.0, at: left_bank }, { name: I-C, elevation: 2838.0 }, { name: I-D, elevation: 2852.0 }, { name: F-A, elevation: 2813.0, element: slab } ]"
 for res in coarse medium; do
   for model in gp_interface mohr_coulomb; do

@@ -159,7 +159,7 @@ pub enum Command {
     /// Generate spectrum-compatible artificial accelerograms from a YAML file (design spectrum
     /// of DL 5073-2000 / NB 35047-2015, three components): writes `<name>.csv` (t,a_x,a_y,a_z in
     /// m/s²), `<name>_compatibility.csv` and `<name>.png` per record (`inputs/accel/README.md`).
-    /// Exit code 1 when a record misses the acceptance (spec seismic §2.3), 2 on bad input.
+    /// Exit code 1 when a record misses the spectrum acceptance (`cfrd::guide`), 2 on bad input.
     Accel {
         /// Specification file (YAML), e.g. `inputs/accel/seed_quake.yaml`.
         spec: PathBuf,

@@ -12,7 +12,7 @@
 //!   Fig. 7, `fig07_dam_displacement.csv`): relative difference.
 //!
 //! With [`Study::Quake`] (`cfrd accuracy --quake`) the same four quantities are those the
-//! earthquake leaves behind (spec seismic §3.1 item 3): the slab stresses and deflection
+//! earthquake leaves behind: the slab stresses and deflection
 //! induced by the residual deformation (after − before the quake, seed Fig. 13, the rows
 //! `residual` of `fig13_residual_slab.csv`) and the residual crest settlement (−u_z of
 //! `residual_displacement_m` in `quake_summary.json`).

@@ -1,9 +1,8 @@
 //! What an earthquake stage leaves without a profile definition: the time history of the crest
 //! (relative displacement, absolute acceleration, ground acceleration), its residual
-//! displacement (end of the quake minus the state before it, the seed's "residual deformation",
-//! spec seismic §3.1 item 3) and the acceleration amplification (peak absolute crest over peak
-//! ground acceleration, spec seismic §3.6). Written by `cfrd run` after a scene with a dynamic
-//! stage: `quake_crest.csv`, `quake_crest.png` and `quake_summary.json`.
+//! displacement (end of the quake minus the state before it, the seed's "residual
+//! deformation") and the acceleration amplification (peak absolute crest over peak ground
+//! acceleration). Written by `cfrd run` after a scene with a dynamic stage: `quake_crest.csv`, `quake_crest.png` and `quake_summary.json`.
 
 use crate::io::results_reader::{open, stage_name, step_names};
 use crate::plot::{Figure, Panel, Series};

@@ -119,7 +119,7 @@ pub(crate) fn on_time_grid(t: f64, dt: f64) -> f64 {
     }
 }
 
-/// `after − before` of every field (the residual state, spec seismic §3.1 item 3); a field
+/// `after − before` of every field (the residual state); a field
 /// missing from either is empty.
 pub fn residual(before: &StageFields, after: &StageFields) -> StageFields {
     let diff = |a: &[f64], b: &[f64]| -> Vec<f64> {

@@ -1,4 +1,4 @@
-//! The seed paper's dynamic outputs (seed Figs. 12–20, spec seismic §3.1 item 3 and §3.6) from
+//! The seed paper's dynamic outputs (seed Figs. 12–20) from
 //! the results of a run with an earthquake stage: the residual deformation (state at the end of
 //! the quake minus the state before it) of the dam section, the slab and the slab–cushion
 //! interface, and the time histories of the named probes ([`crate::post::profiles::Probe`]). CSV

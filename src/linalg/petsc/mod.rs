@@ -2,7 +2,7 @@
 //! PETSc's message, and only the Vec/Mat/KSP/PC/SNES operations cfrd needs (SNES drives the
 //! Newton iterations through the [`SnesProblem`] callbacks).
 //!
-//! Start-up and shutdown order (`spec/stack.md` §4): MPI first (rsmpi), then [`Petsc::initialize`]
+//! Start-up and shutdown order: MPI first (rsmpi), then [`Petsc::initialize`]
 //! on the same communicator (through `SlepcInitialize`, which initializes PETSc and SLEPc at
 //! once, so the eigensolvers of [`super::slepc`] need no second start-up); every PETSc object
 //! must be dropped before the [`Petsc`] guard, which finalizes SLEPc and PETSc but leaves MPI to
