@@ -2,7 +2,8 @@
 //! (relative displacement, absolute acceleration, ground acceleration), its residual
 //! displacement (end of the quake minus the state before it, the seed's "residual
 //! deformation") and the acceleration amplification (peak absolute crest over peak ground
-//! acceleration). Written by `cfrd run` after a scene with a dynamic stage: `quake_crest.csv`, `quake_crest.png` and `quake_summary.json`.
+//! acceleration). Written by `cfrd run` after a scene with a dynamic stage: `quake_crest.csv`,
+//! `quake_crest.png` and `quake_summary.json`.
 
 use crate::io::results_reader::{open, stage_name, step_names};
 use crate::plot::{Figure, Panel, Series};
