@@ -273,6 +273,41 @@ impl CfrdSpec {
 
     /// Checks the values; errors name the YAML path `mesh.cfrd.<field>`.
     fn layout(&self) -> Result<Layout, MeshError> {
+        self.check_section()?;
+        self.check_counts()?;
+        let tol = 1e-9 * self.height;
+        self.check_elevations(tol)?;
+        let h = self.layer_heights(tol)?;
+        let zb = self.base_elevation;
+        let row_at = |z: f64| -> usize {
+            let target = z - zb;
+            h.iter()
+                .enumerate()
+                .min_by(|a, b| (a.1 - target).abs().total_cmp(&(b.1 - target).abs()))
+                .map(|(k, _)| k)
+                .unwrap_or(0)
+        };
+        let mut stage_rows = Vec::with_capacity(self.slab_stage_tops.len());
+        let mut start = 0;
+        for &z in &self.slab_stage_tops {
+            let end = row_at(z);
+            stage_rows.push((start, end));
+            start = end;
+        }
+        let cast_layer = row_at(self.slab_cast_elevation);
+        let (run, half, panels) = self.canyon_panels()?;
+        Ok(Layout {
+            h,
+            stage_rows,
+            cast_layer,
+            run,
+            central: [-half, half],
+            panels,
+        })
+    }
+
+    /// Checks the dimensions of the section and the canyon.
+    fn check_section(&self) -> Result<(), MeshError> {
         positive("height", self.height)?;
         if !self.base_elevation.is_finite() {
             return Err(invalid("base_elevation", "must be finite".into()));
@@ -311,7 +346,11 @@ impl CfrdSpec {
         }
         positive("slab_thickness_crest", self.slab_thickness_crest)?;
         non_negative("slab_thickness_gradient", self.slab_thickness_gradient)?;
-        positive("panel_width", self.panel_width)?;
+        positive("panel_width", self.panel_width)
+    }
+
+    /// Checks the element and stage counts and the unit weight of water.
+    fn check_counts(&self) -> Result<(), MeshError> {
         if self.elements_per_panel == 0 {
             return Err(invalid("elements_per_panel", "must be at least 1".into()));
         }
@@ -343,8 +382,13 @@ impl CfrdSpec {
                 format!("{} N/m³ is not plausible (SI: 9810)", self.water_unit_weight),
             ));
         }
+        Ok(())
+    }
+
+    /// Checks the slab stage tops, the cast elevation and the reservoir level against the base
+    /// and the crest, `tol` the tolerance of elevations.
+    fn check_elevations(&self, tol: f64) -> Result<(), MeshError> {
         let (zb, zc) = (self.base_elevation, self.crest_elevation());
-        let tol = 1e-9 * self.height;
         let tops = &self.slab_stage_tops;
         if tops.is_empty() {
             return Err(invalid("slab_stage_tops", "lists no stage".into()));
@@ -384,10 +428,16 @@ impl CfrdSpec {
                 format!("{level} m must lie above the base ({zb} m) and at most at the crest ({zc} m)"),
             ));
         }
+        Ok(())
+    }
 
-        // layer boundaries: breakpoints, then the layers by largest remainder
+    /// Relative heights of the layer boundaries: the breakpoints (base, slab stage tops, cast
+    /// elevation) split the height into segments, which share the layers by largest remainder.
+    fn layer_heights(&self, tol: f64) -> Result<Vec<f64>, MeshError> {
+        let zb = self.base_elevation;
+        let cast = self.slab_cast_elevation;
         let mut breaks: Vec<f64> = vec![0.0];
-        for z in tops.iter().chain(std::iter::once(&cast)) {
+        for z in self.slab_stage_tops.iter().chain(std::iter::once(&cast)) {
             let h = (z - zb).clamp(0.0, self.height);
             if breaks.iter().all(|b| (b - h).abs() > tol) {
                 breaks.push(h);
@@ -408,9 +458,23 @@ impl CfrdSpec {
                 format!("{nz} is too many (at most 100000)"),
             ));
         }
+        let lens: Vec<f64> = breaks.windows(2).map(|w| w[1] - w[0]).collect();
+        let count = self.layers_per_segment(segments, &lens);
+        let mut h = vec![0.0];
+        for (s, &c) in count.iter().enumerate() {
+            for q in 1..=c {
+                h.push(breaks[s] + lens[s] * q as f64 / c as f64);
+            }
+        }
+        Ok(h)
+    }
+
+    /// Layers of each of the `segments` elevation segments of lengths `lens`: one each, the
+    /// others by largest remainder of their share of the height.
+    fn layers_per_segment(&self, segments: usize, lens: &[f64]) -> Vec<usize> {
+        let nz = self.fill_layers;
         let mut count = vec![1usize; segments];
         let spare = (nz - segments) as f64;
-        let lens: Vec<f64> = breaks.windows(2).map(|w| w[1] - w[0]).collect();
         let exact: Vec<f64> = lens.iter().map(|l| spare * l / self.height).collect();
         for (c, e) in count.iter_mut().zip(&exact) {
             *c += e.floor() as usize;
@@ -429,30 +493,12 @@ impl CfrdSpec {
             count[s] += 1;
             left -= 1;
         }
-        let mut h = vec![0.0];
-        for (s, &c) in count.iter().enumerate() {
-            for q in 1..=c {
-                h.push(breaks[s] + lens[s] * q as f64 / c as f64);
-            }
-        }
-        let row_at = |z: f64| -> usize {
-            let target = z - zb;
-            h.iter()
-                .enumerate()
-                .min_by(|a, b| (a.1 - target).abs().total_cmp(&(b.1 - target).abs()))
-                .map(|(k, _)| k)
-                .unwrap_or(0)
-        };
-        let mut stage_rows = Vec::with_capacity(tops.len());
-        let mut start = 0;
-        for &z in tops {
-            let end = row_at(z);
-            stage_rows.push((start, end));
-            start = end;
-        }
-        let cast_layer = row_at(cast);
+        count
+    }
 
-        // canyon and panels
+    /// The abutment runs, the half width of the central part and the panels of the left fan,
+    /// the central part and the right fan; an error if the mesh would have too many nodes.
+    fn canyon_panels(&self) -> Result<([f64; 2], f64, [usize; 3]), MeshError> {
         let runs = (self.crest_length - self.valley_bottom_width) / self.height;
         let run = [self.left_share * runs, (1.0 - self.left_share) * runs];
         let w = self.panel_width;
@@ -478,14 +524,7 @@ impl CfrdSpec {
                 ),
             ));
         }
-        Ok(Layout {
-            h,
-            stage_rows,
-            cast_layer,
-            run,
-            central: [-half, half],
-            panels,
-        })
+        Ok((run, half, panels))
     }
 }
 
@@ -496,273 +535,408 @@ const ZONES: [&str; 3] = ["cushion", "transition", "rockfill"];
 /// Every element is checked ([`Mesh::validate`]) before the mesh is returned.
 pub fn cfrd_mesh(spec: &CfrdSpec) -> Result<CfrdModel, MeshError> {
     let lay = spec.layout()?;
-    let nz = spec.fill_layers;
-    let nr = spec.rockfill_elements;
-    let nx = 2 + nr;
-    let e = spec.elements_per_panel;
-    let n_panels = lay.panels.iter().sum::<usize>();
-    let ny = n_panels * e;
-    let (mu, md) = (spec.upstream_slope, spec.downstream_slope);
-    let base_width = (mu + md) * spec.height + spec.crest_width;
-    let zb = spec.base_elevation;
+    let grid = Grid::new(spec, &lay);
+    let mut b = Builder::default();
+    grid.push_fill_nodes(&mut b.mesh);
+    grid.push_slab_nodes(&mut b.mesh);
+    grid.push_fill(&mut b);
+    let stage_blocks: Vec<Vec<String>> = (lay.stage_rows.iter().enumerate())
+        .map(|(s, &rows)| grid.push_slab_stage(&mut b, s + 1, rows))
+        .collect();
+    let mesh = grid.finish_sets(b)?;
+    let stages = schedule(spec, &lay, &stage_blocks);
+    let panel_edges_at_crest: Vec<f64> = (0..=grid.n_panels)
+        .map(|p| grid.y_col(p * grid.e, spec.height))
+        .collect();
+    Ok(CfrdModel {
+        mesh,
+        stages,
+        layer_elevations: lay.h.iter().map(|h| spec.base_elevation + h).collect(),
+        panel_edges_at_crest,
+    })
+}
 
-    // column positions: y(j, h)
-    let y_left = |h: f64| -0.5 * spec.valley_bottom_width - lay.run[0] * h;
-    let y_right = |h: f64| 0.5 * spec.valley_bottom_width + lay.run[1] * h;
-    let [nl, nc, _] = lay.panels.map(|p| p * e);
-    let y_col = |j: usize, h: f64| -> f64 {
-        if j <= nl {
-            let a = y_left(h);
-            a + (lay.central[0] - a) * j as f64 / nl as f64
-        } else if j <= nl + nc {
-            lay.central[0] + spec.panel_width * (j - nl) as f64 / e as f64
-        } else {
-            let b = y_right(h);
-            lay.central[1] + (b - lay.central[1]) * (j - nl - nc) as f64 / (ny - nl - nc) as f64
+/// Counts, node numbering and node positions of the structured grid of a checked spec.
+struct Grid<'a> {
+    /// The spec.
+    spec: &'a CfrdSpec,
+    /// Its layout.
+    lay: &'a Layout,
+    /// Element layers.
+    nz: usize,
+    /// Elements across the main rockfill.
+    nr: usize,
+    /// Elements across the section (cushion, transition, main rockfill).
+    nx: usize,
+    /// Elements along the axis per panel.
+    e: usize,
+    /// Panels.
+    n_panels: usize,
+    /// Elements along the axis.
+    ny: usize,
+    /// Upstream slope.
+    mu: f64,
+    /// Downstream slope.
+    md: f64,
+    /// Width of the section at the base.
+    base_width: f64,
+    /// Columns of the left fan.
+    nl: usize,
+    /// Columns of the central part.
+    nc: usize,
+    /// Index of the first slab node (the number of rockfill grid nodes).
+    slab_base: usize,
+}
+
+impl<'a> Grid<'a> {
+    /// The grid of `spec` laid out as `lay`.
+    fn new(spec: &'a CfrdSpec, lay: &'a Layout) -> Self {
+        let nz = spec.fill_layers;
+        let nr = spec.rockfill_elements;
+        let nx = 2 + nr;
+        let e = spec.elements_per_panel;
+        let n_panels = lay.panels.iter().sum::<usize>();
+        let ny = n_panels * e;
+        let (mu, md) = (spec.upstream_slope, spec.downstream_slope);
+        let base_width = (mu + md) * spec.height + spec.crest_width;
+        let [nl, nc, _] = lay.panels.map(|p| p * e);
+        Grid {
+            spec,
+            lay,
+            nz,
+            nr,
+            nx,
+            e,
+            n_panels,
+            ny,
+            mu,
+            md,
+            base_width,
+            nl,
+            nc,
+            slab_base: (nx + 1) * (ny + 1) * (nz + 1),
         }
-    };
-    let x_col = |i: usize, h: f64| -> f64 {
-        let x0 = mu * h;
+    }
+
+    /// y of the left abutment at height `h` above the base.
+    fn y_left(&self, h: f64) -> f64 {
+        -0.5 * self.spec.valley_bottom_width - self.lay.run[0] * h
+    }
+
+    /// y of the right abutment at height `h` above the base.
+    fn y_right(&self, h: f64) -> f64 {
+        0.5 * self.spec.valley_bottom_width + self.lay.run[1] * h
+    }
+
+    /// y of grid column `j` at height `h` above the base.
+    fn y_col(&self, j: usize, h: f64) -> f64 {
+        let (nl, nc, central) = (self.nl, self.nc, self.lay.central);
+        if j <= nl {
+            let a = self.y_left(h);
+            a + (central[0] - a) * j as f64 / nl as f64
+        } else if j <= nl + nc {
+            central[0] + self.spec.panel_width * (j - nl) as f64 / self.e as f64
+        } else {
+            let b = self.y_right(h);
+            central[1] + (b - central[1]) * (j - nl - nc) as f64 / (self.ny - nl - nc) as f64
+        }
+    }
+
+    /// x of grid line `i` across the section at height `h` above the base.
+    fn x_col(&self, i: usize, h: f64) -> f64 {
+        let spec = self.spec;
+        let x0 = self.mu * h;
         match i {
             0 => x0,
             1 => x0 + spec.cushion_width,
             _ => {
                 let a = x0 + spec.cushion_width + spec.transition_width;
-                let b = base_width - md * h;
-                a + (b - a) * (i - 2) as f64 / nr as f64
+                let b = self.base_width - self.md * h;
+                a + (b - a) * (i - 2) as f64 / self.nr as f64
             }
         }
-    };
+    }
 
-    let mut mesh = Mesh::default();
-    // rockfill nodes
-    let fill_node = |i: usize, j: usize, k: usize| (i + (nx + 1) * (j + (ny + 1) * k)) as u32;
-    for k in 0..=nz {
-        let h = lay.h[k];
-        for j in 0..=ny {
-            let y = y_col(j, h);
-            for i in 0..=nx {
-                mesh.coords.push([x_col(i, h), y, zb + h]);
-            }
-        }
+    /// Index of the rockfill grid node (i, j, k).
+    fn fill_node(&self, i: usize, j: usize, k: usize) -> u32 {
+        (i + (self.nx + 1) * (j + (self.ny + 1) * k)) as u32
     }
-    // slab nodes: panel p, local column jj ∈ 0..=e, row k, side 0 outer / 1 inner
-    let slab_base = mesh.coords.len();
-    let slab_node = |p: usize, jj: usize, k: usize, side: usize| {
-        (slab_base + side + 2 * (jj + (e + 1) * (k + (nz + 1) * p))) as u32
-    };
-    let norm = (1.0 + mu * mu).sqrt();
-    let n_out = [-1.0 / norm, 0.0, mu / norm];
-    for p in 0..n_panels {
-        for k in 0..=nz {
-            for jj in 0..=e {
-                let inner = mesh.coords[fill_node(0, p * e + jj, k) as usize];
-                let t = spec.slab_thickness(inner[2]);
-                let outer = [0, 1, 2].map(|c| inner[c] + t * n_out[c]);
-                mesh.coords.push(outer);
-                mesh.coords.push(inner);
-            }
-        }
-    }
-    let mut plinth_of: BTreeMap<u32, u32> = BTreeMap::new();
-    let mut plinth = |mesh: &mut Mesh, n: u32| -> u32 {
-        *plinth_of.entry(n).or_insert_with(|| {
-            mesh.coords.push(mesh.coords[n as usize]);
-            (mesh.coords.len() - 1) as u32
-        })
-    };
 
-    // blocks
-    let add_block =
-        |mesh: &mut Mesh, name: String, kind: ElementKind, orientation: Option<[f64; 3]>| -> u32 {
-            mesh.blocks.push(Block {
-                name,
-                kind,
-                orientation,
-            });
-            (mesh.blocks.len() - 1) as u32
-        };
-    for k in 0..nz {
-        for zone in ZONES {
-            add_block(
-                &mut mesh,
-                format!("fill_{:03}_{zone}", k + 1),
-                ElementKind::Hex8,
-                None,
-            );
-        }
+    /// Index of the slab node of panel `p`, local column `jj` ∈ 0..=e, row `k`, side 0 outer /
+    /// 1 inner.
+    fn slab_node(&self, p: usize, jj: usize, k: usize, side: usize) -> u32 {
+        (self.slab_base + side + 2 * (jj + (self.e + 1) * (k + (self.nz + 1) * p))) as u32
     }
-    let push = |mesh: &mut Mesh, kind: ElementKind, nodes: [u32; 8], block: u32| {
-        mesh.elements.push(Element {
-            id: mesh.elements.len() as u64 + 1,
-            kind,
-            nodes,
-            block,
-        });
-    };
-    // fill elements
-    for k in 0..nz {
-        for j in 0..ny {
-            for i in 0..nx {
-                let zone = i.min(2);
-                let nodes = [
-                    fill_node(i, j, k),
-                    fill_node(i + 1, j, k),
-                    fill_node(i + 1, j + 1, k),
-                    fill_node(i, j + 1, k),
-                    fill_node(i, j, k + 1),
-                    fill_node(i + 1, j, k + 1),
-                    fill_node(i + 1, j + 1, k + 1),
-                    fill_node(i, j + 1, k + 1),
-                ];
-                push(&mut mesh, ElementKind::Hex8, nodes, (3 * k + zone) as u32);
+
+    /// A side face of panel `p` at local column `jj`, row `k`: outer/inner at k, then at k + 1.
+    fn side(&self, p: usize, jj: usize, k: usize) -> [u32; 4] {
+        [
+            self.slab_node(p, jj, k, 0),
+            self.slab_node(p, jj, k, 1),
+            self.slab_node(p, jj, k + 1, 1),
+            self.slab_node(p, jj, k + 1, 0),
+        ]
+    }
+
+    /// Pushes the rockfill grid nodes (i fastest, then j, then k).
+    fn push_fill_nodes(&self, mesh: &mut Mesh) {
+        let zb = self.spec.base_elevation;
+        for k in 0..=self.nz {
+            let h = self.lay.h[k];
+            for j in 0..=self.ny {
+                let y = self.y_col(j, h);
+                for i in 0..=self.nx {
+                    mesh.coords.push([self.x_col(i, h), y, zb + h]);
+                }
+            }
+        }
+        debug_assert_eq!(mesh.coords.len(), self.slab_base);
+    }
+
+    /// Pushes the slab nodes panel by panel: the inner one on the cushion face, the outer one
+    /// offset by the slab thickness along the outward normal.
+    fn push_slab_nodes(&self, mesh: &mut Mesh) {
+        let mu = self.mu;
+        let norm = (1.0 + mu * mu).sqrt();
+        let n_out = [-1.0 / norm, 0.0, mu / norm];
+        for p in 0..self.n_panels {
+            for k in 0..=self.nz {
+                for jj in 0..=self.e {
+                    let inner = mesh.coords[self.fill_node(0, p * self.e + jj, k) as usize];
+                    let t = self.spec.slab_thickness(inner[2]);
+                    let outer = [0, 1, 2].map(|c| inner[c] + t * n_out[c]);
+                    mesh.coords.push(outer);
+                    mesh.coords.push(inner);
+                }
             }
         }
     }
-    // slab, interface and joints, stage by stage
-    let mut slab_faces = Vec::new();
-    let mut stage_blocks: Vec<Vec<String>> = Vec::new();
-    for (s, &(k0, k1)) in lay.stage_rows.iter().enumerate() {
-        let sn = s + 1;
-        let mut names = Vec::new();
-        let slab_b = add_block(&mut mesh, format!("slab_{sn}"), ElementKind::Hex8, None);
-        let iface_b = add_block(
-            &mut mesh,
-            format!("interface_{sn}"),
-            ElementKind::Interface8,
-            Some([1.0, 0.0, -mu]),
-        );
-        names.push(format!("slab_{sn}"));
-        names.push(format!("interface_{sn}"));
-        let mut slab_hexes = Vec::new();
-        for p in 0..n_panels {
-            for k in k0..k1 {
-                for jj in 0..e {
+
+    /// Adds the fill blocks (three zones per layer) and the fill hexahedra (k, j, i).
+    fn push_fill(&self, b: &mut Builder) {
+        for k in 0..self.nz {
+            for zone in ZONES {
+                b.add_block(format!("fill_{:03}_{zone}", k + 1), ElementKind::Hex8, None);
+            }
+        }
+        for k in 0..self.nz {
+            for j in 0..self.ny {
+                for i in 0..self.nx {
+                    let zone = i.min(2);
                     let nodes = [
-                        slab_node(p, jj, k, 0),
-                        slab_node(p, jj, k, 1),
-                        slab_node(p, jj + 1, k, 1),
-                        slab_node(p, jj + 1, k, 0),
-                        slab_node(p, jj, k + 1, 0),
-                        slab_node(p, jj, k + 1, 1),
-                        slab_node(p, jj + 1, k + 1, 1),
-                        slab_node(p, jj + 1, k + 1, 0),
+                        self.fill_node(i, j, k),
+                        self.fill_node(i + 1, j, k),
+                        self.fill_node(i + 1, j + 1, k),
+                        self.fill_node(i, j + 1, k),
+                        self.fill_node(i, j, k + 1),
+                        self.fill_node(i + 1, j, k + 1),
+                        self.fill_node(i + 1, j + 1, k + 1),
+                        self.fill_node(i, j + 1, k + 1),
                     ];
-                    slab_faces.push(Face {
-                        element: mesh.elements.len() as u32,
+                    b.push(ElementKind::Hex8, nodes, (3 * k + zone) as u32);
+                }
+            }
+        }
+    }
+
+    /// Adds slab stage `sn` (1-based) over the element rows `[k0, k1)`: slab, interface,
+    /// vertical and perimetric joints; returns the names of its blocks.
+    fn push_slab_stage(&self, b: &mut Builder, sn: usize, (k0, k1): (usize, usize)) -> Vec<String> {
+        let mut names = vec![format!("slab_{sn}"), format!("interface_{sn}")];
+        let slab_b = b.add_block(names[0].clone(), ElementKind::Hex8, None);
+        let iface_b = b.add_block(
+            names[1].clone(),
+            ElementKind::Interface8,
+            Some([1.0, 0.0, -self.mu]),
+        );
+        let slab_hexes = self.push_slab_hexes(b, slab_b, (k0, k1));
+        self.push_slab_interface(b, iface_b, &slab_hexes);
+        if self.n_panels > 1 {
+            names.push(self.push_vertical_joints(b, sn, (k0, k1)));
+        }
+        let (e, last) = (self.e, self.n_panels - 1);
+        if k0 == 0 {
+            let faces = (0..self.n_panels)
+                .flat_map(|p| (0..e).map(move |jj| (p, jj)))
+                .map(|(p, jj)| {
+                    [
+                        self.slab_node(p, jj, 0, 0),
+                        self.slab_node(p, jj, 0, 1),
+                        self.slab_node(p, jj + 1, 0, 1),
+                        self.slab_node(p, jj + 1, 0, 0),
+                    ]
+                })
+                .collect();
+            names.push(b.perimetric(sn, "bottom", [-self.mu, 0.0, -1.0], faces));
+        }
+        let left = (k0..k1).map(|k| self.side(0, 0, k)).collect();
+        names.push(b.perimetric(sn, "left", [0.0, -1.0, 0.0], left));
+        let right = (k0..k1).map(|k| self.side(last, e, k)).collect();
+        names.push(b.perimetric(sn, "right", [0.0, 1.0, 0.0], right));
+        names
+    }
+
+    /// Adds the slab hexahedra of rows `[k0, k1)` to block `slab_b` and their outer faces to
+    /// the face set; returns their (panel, local column, row).
+    fn push_slab_hexes(
+        &self,
+        b: &mut Builder,
+        slab_b: u32,
+        (k0, k1): (usize, usize),
+    ) -> Vec<(usize, usize, usize)> {
+        let mut slab_hexes = Vec::new();
+        for p in 0..self.n_panels {
+            for k in k0..k1 {
+                for jj in 0..self.e {
+                    let nodes = [
+                        self.slab_node(p, jj, k, 0),
+                        self.slab_node(p, jj, k, 1),
+                        self.slab_node(p, jj + 1, k, 1),
+                        self.slab_node(p, jj + 1, k, 0),
+                        self.slab_node(p, jj, k + 1, 0),
+                        self.slab_node(p, jj, k + 1, 1),
+                        self.slab_node(p, jj + 1, k + 1, 1),
+                        self.slab_node(p, jj + 1, k + 1, 0),
+                    ];
+                    b.slab_faces.push(Face {
+                        element: b.mesh.elements.len() as u32,
                         local_face: SLAB_OUTER_FACE,
                         nodes: HEX8_FACES[SLAB_OUTER_FACE as usize].map(|a| nodes[a]),
                     });
-                    push(&mut mesh, ElementKind::Hex8, nodes, slab_b);
+                    b.push(ElementKind::Hex8, nodes, slab_b);
                     slab_hexes.push((p, jj, k));
                 }
             }
         }
-        for &(p, jj, k) in &slab_hexes {
-            let j = p * e + jj;
+        slab_hexes
+    }
+
+    /// Adds the slab–cushion interface elements of `slab_hexes` to block `iface_b`: face B on
+    /// the slab's inner face, face A on the cushion nodes.
+    fn push_slab_interface(&self, b: &mut Builder, iface_b: u32, slab_hexes: &[(usize, usize, usize)]) {
+        for &(p, jj, k) in slab_hexes {
+            let j = p * self.e + jj;
             let nodes = [
-                slab_node(p, jj, k, 1),
-                slab_node(p, jj + 1, k, 1),
-                slab_node(p, jj + 1, k + 1, 1),
-                slab_node(p, jj, k + 1, 1),
-                fill_node(0, j, k),
-                fill_node(0, j + 1, k),
-                fill_node(0, j + 1, k + 1),
-                fill_node(0, j, k + 1),
+                self.slab_node(p, jj, k, 1),
+                self.slab_node(p, jj + 1, k, 1),
+                self.slab_node(p, jj + 1, k + 1, 1),
+                self.slab_node(p, jj, k + 1, 1),
+                self.fill_node(0, j, k),
+                self.fill_node(0, j + 1, k),
+                self.fill_node(0, j + 1, k + 1),
+                self.fill_node(0, j, k + 1),
             ];
-            push(&mut mesh, ElementKind::Interface8, nodes, iface_b);
+            b.push(ElementKind::Interface8, nodes, iface_b);
         }
-        // a side face of panel p at local column jj, row k: outer/inner at k, then at k + 1
-        let side = |p: usize, jj: usize, k: usize| {
-            [
-                slab_node(p, jj, k, 0),
-                slab_node(p, jj, k, 1),
-                slab_node(p, jj, k + 1, 1),
-                slab_node(p, jj, k + 1, 0),
-            ]
-        };
-        if n_panels > 1 {
-            let b = add_block(
-                &mut mesh,
-                format!("joint_vertical_{sn}"),
-                ElementKind::Interface8,
-                Some([0.0, 1.0, 0.0]),
-            );
-            names.push(format!("joint_vertical_{sn}"));
-            for p in 0..n_panels - 1 {
-                for k in k0..k1 {
-                    let (fb, fa) = (side(p, e, k), side(p + 1, 0, k));
-                    let nodes = [fb[0], fb[1], fb[2], fb[3], fa[0], fa[1], fa[2], fa[3]];
-                    push(&mut mesh, ElementKind::Interface8, nodes, b);
+    }
+
+    /// Adds the block `joint_vertical_{sn}` and its joints between adjacent panels over the
+    /// rows `[k0, k1)`; returns the block's name.
+    fn push_vertical_joints(&self, b: &mut Builder, sn: usize, (k0, k1): (usize, usize)) -> String {
+        let name = format!("joint_vertical_{sn}");
+        let block = b.add_block(name.clone(), ElementKind::Interface8, Some([0.0, 1.0, 0.0]));
+        for p in 0..self.n_panels - 1 {
+            for k in k0..k1 {
+                let (fb, fa) = (self.side(p, self.e, k), self.side(p + 1, 0, k));
+                let nodes = [fb[0], fb[1], fb[2], fb[3], fa[0], fa[1], fa[2], fa[3]];
+                b.push(ElementKind::Interface8, nodes, block);
+            }
+        }
+        name
+    }
+
+    /// Adds the node sets `foundation` and `plinth` and the face set `slab_upstream`, numbers
+    /// the nodes and checks the mesh.
+    fn finish_sets(&self, b: Builder) -> Result<Mesh, MeshError> {
+        let Builder {
+            mut mesh,
+            plinth_of,
+            slab_faces,
+        } = b;
+        let (nx, ny) = (self.nx, self.ny);
+        let mut foundation = Vec::new();
+        for k in 0..=self.nz {
+            for j in 0..=ny {
+                if k == 0 || j == 0 || j == ny {
+                    foundation.extend((0..=nx).map(|i| self.fill_node(i, j, k)));
                 }
             }
         }
-        let mut perimetric = |mesh: &mut Mesh, which: &str, orientation: [f64; 3], faces: Vec<[u32; 4]>| {
-            let name = format!("joint_perimetric_{which}_{sn}");
-            let b = add_block(mesh, name.clone(), ElementKind::Interface8, Some(orientation));
-            names.push(name);
-            for fb in faces {
-                let fa = fb.map(|n| plinth(mesh, n));
-                push(
-                    mesh,
-                    ElementKind::Interface8,
-                    [fb[0], fb[1], fb[2], fb[3], fa[0], fa[1], fa[2], fa[3]],
-                    b,
-                );
-            }
-        };
-        if k0 == 0 {
-            let faces = (0..n_panels)
-                .flat_map(|p| (0..e).map(move |jj| (p, jj)))
-                .map(|(p, jj)| {
-                    [
-                        slab_node(p, jj, 0, 0),
-                        slab_node(p, jj, 0, 1),
-                        slab_node(p, jj + 1, 0, 1),
-                        slab_node(p, jj + 1, 0, 0),
-                    ]
-                })
-                .collect();
-            perimetric(&mut mesh, "bottom", [-mu, 0.0, -1.0], faces);
-        }
-        perimetric(
-            &mut mesh,
-            "left",
-            [0.0, -1.0, 0.0],
-            (k0..k1).map(|k| side(0, 0, k)).collect(),
-        );
-        perimetric(
-            &mut mesh,
-            "right",
-            [0.0, 1.0, 0.0],
-            (k0..k1).map(|k| side(n_panels - 1, e, k)).collect(),
-        );
-        stage_blocks.push(names);
+        foundation.sort_unstable();
+        let plinth_nodes: Vec<u32> = plinth_of
+            .values()
+            .copied()
+            .collect::<std::collections::BTreeSet<u32>>()
+            .into_iter()
+            .collect();
+        mesh.node_sets.insert("foundation".into(), foundation);
+        mesh.node_sets.insert("plinth".into(), plinth_nodes);
+        mesh.face_sets.insert("slab_upstream".into(), slab_faces);
+        mesh.node_ids = (1..=mesh.coords.len() as u64).collect();
+        mesh.validate()?;
+        Ok(mesh)
+    }
+}
+
+/// The mesh under construction, with the plinth copies of slab nodes and the outer slab faces.
+#[derive(Default)]
+struct Builder {
+    /// The mesh so far.
+    mesh: Mesh,
+    /// Plinth node of each slab node on the perimetric joint.
+    plinth_of: BTreeMap<u32, u32>,
+    /// Outer faces of the slab hexahedra (the face set `slab_upstream`).
+    slab_faces: Vec<Face>,
+}
+
+impl Builder {
+    /// Adds a block; returns its index.
+    fn add_block(&mut self, name: String, kind: ElementKind, orientation: Option<[f64; 3]>) -> u32 {
+        self.mesh.blocks.push(Block {
+            name,
+            kind,
+            orientation,
+        });
+        (self.mesh.blocks.len() - 1) as u32
     }
 
-    // sets
-    let mut foundation = Vec::new();
-    for k in 0..=nz {
-        for j in 0..=ny {
-            if k == 0 || j == 0 || j == ny {
-                foundation.extend((0..=nx).map(|i| fill_node(i, j, k)));
-            }
-        }
+    /// Adds an element of `block`, its id the next one.
+    fn push(&mut self, kind: ElementKind, nodes: [u32; 8], block: u32) {
+        self.mesh.elements.push(Element {
+            id: self.mesh.elements.len() as u64 + 1,
+            kind,
+            nodes,
+            block,
+        });
     }
-    foundation.sort_unstable();
-    let plinth_nodes: Vec<u32> = plinth_of
-        .values()
-        .copied()
-        .collect::<std::collections::BTreeSet<u32>>()
-        .into_iter()
-        .collect();
-    mesh.node_sets.insert("foundation".into(), foundation);
-    mesh.node_sets.insert("plinth".into(), plinth_nodes);
-    mesh.face_sets.insert("slab_upstream".into(), slab_faces);
-    mesh.node_ids = (1..=mesh.coords.len() as u64).collect();
-    mesh.validate()?;
 
-    // schedule
+    /// The plinth copy of slab node `n`, made at its first use.
+    fn plinth(&mut self, n: u32) -> u32 {
+        let mesh = &mut self.mesh;
+        *self.plinth_of.entry(n).or_insert_with(|| {
+            mesh.coords.push(mesh.coords[n as usize]);
+            (mesh.coords.len() - 1) as u32
+        })
+    }
+
+    /// Adds the block `joint_perimetric_{which}_{sn}` and a joint between each slab face of
+    /// `faces` (face B) and its plinth copy (face A); returns the block's name.
+    fn perimetric(&mut self, sn: usize, which: &str, orientation: [f64; 3], faces: Vec<[u32; 4]>) -> String {
+        let name = format!("joint_perimetric_{which}_{sn}");
+        let block = self.add_block(name.clone(), ElementKind::Interface8, Some(orientation));
+        for fb in faces {
+            let fa = fb.map(|n| self.plinth(n));
+            let nodes = [fb[0], fb[1], fb[2], fb[3], fa[0], fa[1], fa[2], fa[3]];
+            self.push(ElementKind::Interface8, nodes, block);
+        }
+        name
+    }
+}
+
+/// The stages: one per fill layer with slab stage 1 after the cast layer, the other slab
+/// stages, then the impoundment stages; `stage_blocks` are the blocks of each slab stage.
+fn schedule(spec: &CfrdSpec, lay: &Layout, stage_blocks: &[Vec<String>]) -> Vec<CfrdStage> {
+    let zb = spec.base_elevation;
     let mut stages = Vec::new();
     let slab_stage = |s: usize| CfrdStage {
         name: format!("slab_{}", s + 1),
@@ -770,7 +944,7 @@ pub fn cfrd_mesh(spec: &CfrdSpec) -> Result<CfrdModel, MeshError> {
         water_level: None,
         load_steps: None,
     };
-    for k in 0..nz {
+    for k in 0..spec.fill_layers {
         stages.push(CfrdStage {
             name: format!("fill_{:03}", k + 1),
             activate: ZONES.iter().map(|z| format!("fill_{:03}_{z}", k + 1)).collect(),
@@ -793,14 +967,7 @@ pub fn cfrd_mesh(spec: &CfrdSpec) -> Result<CfrdModel, MeshError> {
             load_steps: None,
         });
     }
-    let h_top = spec.height;
-    let panel_edges_at_crest: Vec<f64> = (0..=n_panels).map(|p| y_col(p * e, h_top)).collect();
-    Ok(CfrdModel {
-        mesh,
-        stages,
-        layer_elevations: lay.h.iter().map(|h| zb + h).collect(),
-        panel_edges_at_crest,
-    })
+    stages
 }
 
 #[cfg(test)]
