@@ -10,8 +10,8 @@ use crate::element::interface8::{Interface8Geometry, InterfaceRule};
 use crate::element::interface_frame::FrameAxes;
 use crate::material::{BlockMaterial, MaterialParams, SolidParams};
 use crate::mesh::cfrd::{cfrd_mesh, CfrdStage};
-use crate::mesh::ElementKind;
 use crate::mesh::{generate, Mesh};
+use crate::mesh::{Block, ElementKind};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
@@ -90,202 +90,10 @@ impl Scene {
             }
         }
         append_earthquake(&mut file, &inv)?;
-
-        // blocks <-> mesh blocks <-> materials
-        let mut block_materials = Vec::with_capacity(mesh.blocks.len());
-        for (name, spec) in &file.blocks {
-            if !file.materials.contains_key(&spec.material) {
-                return Err(inv(
-                    &format!("blocks.{name}.material"),
-                    format!("unknown material '{}'", spec.material),
-                ));
-            }
-        }
-        let block_specs = match_blocks(&file.blocks, &mesh, &inv)?;
-        let mut block_interface = Vec::with_capacity(mesh.blocks.len());
-        for (b, (key, spec)) in mesh.blocks.iter().zip(&block_specs) {
-            let mut material = file.materials[&spec.material].split();
-            cap_integration_tolerance(&mut material, &file.solver);
-            let path = format!("blocks.{key}");
-            block_interface.push(match (b.kind, &material) {
-                (ElementKind::Hex8, BlockMaterial::Solid(_)) => {
-                    for (given, key) in [
-                        (spec.orientation.is_some(), "orientation"),
-                        (spec.rule.is_some(), "rule"),
-                        (spec.initial_normal_stress.is_some(), "initial_normal_stress"),
-                    ] {
-                        if given {
-                            return Err(inv(
-                                &format!("{path}.{key}"),
-                                format!("'{}' is a block of solid elements; {key} applies to interface blocks only", b.name),
-                            ));
-                        }
-                    }
-                    None
-                }
-                (ElementKind::Interface8, BlockMaterial::Interface(_)) => {
-                    Some(interface_block(&mesh, b.name.as_str(), spec, &path, &inv)?)
-                }
-                (ElementKind::Hex8, BlockMaterial::Interface(p)) => {
-                    return Err(inv(
-                        &format!("{path}.material"),
-                        format!(
-                            "'{}' is an interface law ({}) but block '{}' has solid (non-zero-thickness) elements",
-                            spec.material,
-                            p.name(),
-                            b.name
-                        ),
-                    ))
-                }
-                (ElementKind::Interface8, BlockMaterial::Solid(p)) => {
-                    return Err(inv(
-                        &format!("{path}.material"),
-                        format!(
-                            "'{}' is a solid model ({}) but block '{}' has zero-thickness (interface) elements; \
-                             give an interface or joint law (hyperbolic, mohr_coulomb, joint, gp_interface)",
-                            spec.material,
-                            p.name(),
-                            b.name
-                        ),
-                    ))
-                }
-            });
-            block_materials.push(material);
-        }
-        let block_element = block_elements(&block_specs, &block_materials, &inv)?;
-        // every interface element must have a usable geometry for its block's orientation
-        for (e, el) in mesh.elements.iter().enumerate() {
-            if let Some(ib) = &block_interface[el.block as usize] {
-                if let Err(err) = Interface8Geometry::new(
-                    &mesh.element_coords(e),
-                    &ib.orientation,
-                    &FrameAxes::default(),
-                    ib.rule,
-                ) {
-                    return Err(inv(
-                        &format!("blocks.{}", mesh.blocks[el.block as usize].name),
-                        format!("interface element {}: {err}", el.id),
-                    ));
-                }
-            }
-        }
-
-        // boundary conditions
-        let mut fixed = Vec::new();
-        for (i, f) in file.boundary.iter().enumerate() {
-            let Some(nodes) = mesh.node_sets.get(&f.set) else {
-                let known: Vec<&String> = mesh.node_sets.keys().collect();
-                return Err(inv(
-                    &format!("boundary[{i}].set"),
-                    format!("the mesh has no node set '{}'; it has: {known:?}", f.set),
-                ));
-            };
-            if f.fix.is_empty() {
-                return Err(inv(&format!("boundary[{i}].fix"), "lists no component".into()));
-            }
-            if !f.value.is_empty() && f.value.len() != f.fix.len() {
-                return Err(inv(
-                    &format!("boundary[{i}].value"),
-                    format!("has {} entries but fix has {}", f.value.len(), f.fix.len()),
-                ));
-            }
-            for (k, axis) in f.fix.iter().enumerate() {
-                let v = f.value.get(k).copied().unwrap_or(0.0);
-                fixed.extend(nodes.iter().map(|&n| (n, axis.index() as u8, v)));
-            }
-        }
-        fixed.sort_by_key(|a| (a.0, a.1));
-        for w in fixed.windows(2) {
-            if (w[0].0, w[0].1) == (w[1].0, w[1].1) && w[0].2 != w[1].2 {
-                return Err(inv(
-                    "boundary",
-                    format!(
-                        "node {} component {} is fixed twice with different values",
-                        mesh.node_ids[w[0].0 as usize], w[0].1
-                    ),
-                ));
-            }
-        }
-        fixed.dedup_by(|a, b| (a.0, a.1) == (b.0, b.1));
-
-        // stages and their terms
-        let mut stages = Vec::new();
-        if file.stages.is_empty() {
-            stages.push(Stage {
-                name: "static".into(),
-                activate: (0..mesh.blocks.len() as u32).collect(),
-                terms: resolve_loads(&file.loads, None, &mesh, "loads", &inv)?,
-                load_steps: file.solver.load_steps,
-                step_growth: file.solver.step_growth,
-                dynamic: None,
-                modal: None,
-            });
-        } else {
-            let mut placed = vec![None::<usize>; mesh.blocks.len()];
-            for (k, st) in file.stages.iter().enumerate() {
-                if file.stages[..k].iter().any(|o| o.name == st.name) {
-                    return Err(inv(
-                        &format!("stages[{k}].name"),
-                        format!("stage name '{}' is used twice", st.name),
-                    ));
-                }
-                let mut activate = Vec::new();
-                for (i, b) in st.activate.iter().enumerate() {
-                    let path = format!("stages[{k}].activate[{i}]");
-                    let Some(bi) = mesh.block_index(b) else {
-                        return Err(inv(&path, format!("the mesh has no block '{b}'")));
-                    };
-                    if let Some(first) = placed[bi as usize] {
-                        return Err(inv(
-                            &path,
-                            format!("block '{b}' is already placed in stage {first}"),
-                        ));
-                    }
-                    placed[bi as usize] = Some(k);
-                    activate.push(bi);
-                }
-                let dynamic = match &st.dynamic {
-                    Some(d) => Some(dynamic::resolve(d, base, &format!("stages[{k}].dynamic"), &inv)?),
-                    None => None,
-                };
-                let (load_steps, step_growth) = match &dynamic {
-                    Some(d) => (d.steps, 1),
-                    None => (
-                        st.load_steps.unwrap_or(file.solver.load_steps),
-                        file.solver.step_growth,
-                    ),
-                };
-                let stage_path = format!("stages[{k}]");
-                let modal = modal::resolve(st.modal.as_ref(), dynamic.as_ref(), &stage_path, &inv)?;
-                if let (Some(_), Some(first)) = (modal, stages.iter().position(|s: &Stage| s.modal.is_some()))
-                {
-                    return Err(inv(
-                        &stage_path,
-                        format!(
-                            "a modal analysis runs already in stage {} '{}'; a scene runs at most one",
-                            first + 1,
-                            stages[first].name
-                        ),
-                    ));
-                }
-                stages.push(Stage {
-                    name: st.name.clone(),
-                    activate,
-                    terms: resolve_loads(
-                        &file.loads,
-                        Some(&st.loads),
-                        &mesh,
-                        &format!("stages[{k}].loads"),
-                        &inv,
-                    )?,
-                    load_steps,
-                    step_growth,
-                    dynamic,
-                    modal,
-                });
-            }
-        }
-
+        let (block_materials, block_interface, block_element) = resolve_blocks(&file, &mesh, &inv)?;
+        check_interface_geometry(&mesh, &block_interface, &inv)?;
+        let fixed = resolve_boundary(&file, &mesh, &inv)?;
+        let stages = resolve_stages(&file, &mesh, base, &inv)?;
         super::restraint::check_restraint(&mesh, &stages, &fixed).map_err(|m| inv("boundary", m))?;
 
         Ok(Scene {
@@ -301,6 +109,268 @@ impl Scene {
             base: base.to_path_buf(),
         })
     }
+}
+
+/// The resolved blocks of a scene: the material, interface options and hexahedron of every
+/// mesh block (indexed like `mesh.blocks`).
+type ResolvedBlocks = (Vec<BlockMaterial>, Vec<Option<InterfaceBlock>>, Vec<SolidElement>);
+
+/// Matches the scene's blocks to the mesh blocks and resolves their materials, interface
+/// options and hexahedra; a block whose material is unknown or of the wrong kind for its
+/// elements is an error.
+fn resolve_blocks(
+    file: &SceneFile,
+    mesh: &Mesh,
+    inv: &dyn Fn(&str, String) -> SceneError,
+) -> Result<ResolvedBlocks, SceneError> {
+    let mut block_materials = Vec::with_capacity(mesh.blocks.len());
+    for (name, spec) in &file.blocks {
+        if !file.materials.contains_key(&spec.material) {
+            return Err(inv(
+                &format!("blocks.{name}.material"),
+                format!("unknown material '{}'", spec.material),
+            ));
+        }
+    }
+    let block_specs = match_blocks(&file.blocks, mesh, inv)?;
+    let mut block_interface = Vec::with_capacity(mesh.blocks.len());
+    for (b, (key, spec)) in mesh.blocks.iter().zip(&block_specs) {
+        let mut material = file.materials[&spec.material].split();
+        cap_integration_tolerance(&mut material, &file.solver);
+        block_interface.push(block_interface_of(mesh, b, key, spec, &material, inv)?);
+        block_materials.push(material);
+    }
+    let block_element = block_elements(&block_specs, &block_materials, inv)?;
+    Ok((block_materials, block_interface, block_element))
+}
+
+/// The interface options of mesh block `b` (scene key `key`, entry `spec`) of `material`:
+/// `None` for a solid block, which must give no interface option; a material of the other kind
+/// than the block's elements is an error.
+fn block_interface_of(
+    mesh: &Mesh,
+    b: &Block,
+    key: &str,
+    spec: &BlockSpec,
+    material: &BlockMaterial,
+    inv: &dyn Fn(&str, String) -> SceneError,
+) -> Result<Option<InterfaceBlock>, SceneError> {
+    let path = format!("blocks.{key}");
+    match (b.kind, material) {
+        (ElementKind::Hex8, BlockMaterial::Solid(_)) => {
+            for (given, key) in [
+                (spec.orientation.is_some(), "orientation"),
+                (spec.rule.is_some(), "rule"),
+                (spec.initial_normal_stress.is_some(), "initial_normal_stress"),
+            ] {
+                if given {
+                    return Err(inv(
+                        &format!("{path}.{key}"),
+                        format!(
+                            "'{}' is a block of solid elements; {key} applies to interface blocks only",
+                            b.name
+                        ),
+                    ));
+                }
+            }
+            Ok(None)
+        }
+        (ElementKind::Interface8, BlockMaterial::Interface(_)) => {
+            Ok(Some(interface_block(mesh, b.name.as_str(), spec, &path, inv)?))
+        }
+        (ElementKind::Hex8, BlockMaterial::Interface(p)) => Err(inv(
+            &format!("{path}.material"),
+            format!(
+                "'{}' is an interface law ({}) but block '{}' has solid (non-zero-thickness) elements",
+                spec.material,
+                p.name(),
+                b.name
+            ),
+        )),
+        (ElementKind::Interface8, BlockMaterial::Solid(p)) => Err(inv(
+            &format!("{path}.material"),
+            format!(
+                "'{}' is a solid model ({}) but block '{}' has zero-thickness (interface) elements; \
+                 give an interface or joint law (hyperbolic, mohr_coulomb, joint, gp_interface)",
+                spec.material,
+                p.name(),
+                b.name
+            ),
+        )),
+    }
+}
+
+/// Every interface element must have a usable geometry for its block's orientation.
+fn check_interface_geometry(
+    mesh: &Mesh,
+    block_interface: &[Option<InterfaceBlock>],
+    inv: &dyn Fn(&str, String) -> SceneError,
+) -> Result<(), SceneError> {
+    for (e, el) in mesh.elements.iter().enumerate() {
+        if let Some(ib) = &block_interface[el.block as usize] {
+            if let Err(err) = Interface8Geometry::new(
+                &mesh.element_coords(e),
+                &ib.orientation,
+                &FrameAxes::default(),
+                ib.rule,
+            ) {
+                return Err(inv(
+                    &format!("blocks.{}", mesh.blocks[el.block as usize].name),
+                    format!("interface element {}: {err}", el.id),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The constrained DOFs of the scene's `boundary`: (node index, component, prescribed value),
+/// sorted and unique; a DOF fixed twice with different values is an error.
+fn resolve_boundary(
+    file: &SceneFile,
+    mesh: &Mesh,
+    inv: &dyn Fn(&str, String) -> SceneError,
+) -> Result<Vec<(u32, u8, f64)>, SceneError> {
+    let mut fixed = Vec::new();
+    for (i, f) in file.boundary.iter().enumerate() {
+        let Some(nodes) = mesh.node_sets.get(&f.set) else {
+            let known: Vec<&String> = mesh.node_sets.keys().collect();
+            return Err(inv(
+                &format!("boundary[{i}].set"),
+                format!("the mesh has no node set '{}'; it has: {known:?}", f.set),
+            ));
+        };
+        if f.fix.is_empty() {
+            return Err(inv(&format!("boundary[{i}].fix"), "lists no component".into()));
+        }
+        if !f.value.is_empty() && f.value.len() != f.fix.len() {
+            return Err(inv(
+                &format!("boundary[{i}].value"),
+                format!("has {} entries but fix has {}", f.value.len(), f.fix.len()),
+            ));
+        }
+        for (k, axis) in f.fix.iter().enumerate() {
+            let v = f.value.get(k).copied().unwrap_or(0.0);
+            fixed.extend(nodes.iter().map(|&n| (n, axis.index() as u8, v)));
+        }
+    }
+    fixed.sort_by_key(|a| (a.0, a.1));
+    for w in fixed.windows(2) {
+        if (w[0].0, w[0].1) == (w[1].0, w[1].1) && w[0].2 != w[1].2 {
+            return Err(inv(
+                "boundary",
+                format!(
+                    "node {} component {} is fixed twice with different values",
+                    mesh.node_ids[w[0].0 as usize], w[0].1
+                ),
+            ));
+        }
+    }
+    fixed.dedup_by(|a, b| (a.0, a.1) == (b.0, b.1));
+    Ok(fixed)
+}
+
+/// The stages of the scene with their terms; a scene without stages has one stage `static`
+/// that places every block.
+fn resolve_stages(
+    file: &SceneFile,
+    mesh: &Mesh,
+    base: &Path,
+    inv: &dyn Fn(&str, String) -> SceneError,
+) -> Result<Vec<Stage>, SceneError> {
+    let mut stages = Vec::new();
+    if file.stages.is_empty() {
+        stages.push(Stage {
+            name: "static".into(),
+            activate: (0..mesh.blocks.len() as u32).collect(),
+            terms: resolve_loads(&file.loads, None, mesh, "loads", inv)?,
+            load_steps: file.solver.load_steps,
+            step_growth: file.solver.step_growth,
+            dynamic: None,
+            modal: None,
+        });
+    } else {
+        let mut placed = vec![None::<usize>; mesh.blocks.len()];
+        for k in 0..file.stages.len() {
+            let stage = resolve_stage(file, mesh, base, k, &mut placed, &stages, inv)?;
+            stages.push(stage);
+        }
+    }
+    Ok(stages)
+}
+
+/// Resolves `file.stages[k]` after the stages `before`; `placed` holds the stage that placed
+/// each block so far. A name used twice, an unknown block, a block placed twice and a second
+/// modal analysis are errors.
+fn resolve_stage(
+    file: &SceneFile,
+    mesh: &Mesh,
+    base: &Path,
+    k: usize,
+    placed: &mut [Option<usize>],
+    before: &[Stage],
+    inv: &dyn Fn(&str, String) -> SceneError,
+) -> Result<Stage, SceneError> {
+    let st = &file.stages[k];
+    if file.stages[..k].iter().any(|o| o.name == st.name) {
+        return Err(inv(
+            &format!("stages[{k}].name"),
+            format!("stage name '{}' is used twice", st.name),
+        ));
+    }
+    let mut activate = Vec::new();
+    for (i, b) in st.activate.iter().enumerate() {
+        let path = format!("stages[{k}].activate[{i}]");
+        let Some(bi) = mesh.block_index(b) else {
+            return Err(inv(&path, format!("the mesh has no block '{b}'")));
+        };
+        if let Some(first) = placed[bi as usize] {
+            return Err(inv(
+                &path,
+                format!("block '{b}' is already placed in stage {first}"),
+            ));
+        }
+        placed[bi as usize] = Some(k);
+        activate.push(bi);
+    }
+    let dynamic = match &st.dynamic {
+        Some(d) => Some(dynamic::resolve(d, base, &format!("stages[{k}].dynamic"), inv)?),
+        None => None,
+    };
+    let (load_steps, step_growth) = match &dynamic {
+        Some(d) => (d.steps, 1),
+        None => (
+            st.load_steps.unwrap_or(file.solver.load_steps),
+            file.solver.step_growth,
+        ),
+    };
+    let stage_path = format!("stages[{k}]");
+    let modal = modal::resolve(st.modal.as_ref(), dynamic.as_ref(), &stage_path, inv)?;
+    if let (Some(_), Some(first)) = (modal, before.iter().position(|s: &Stage| s.modal.is_some())) {
+        return Err(inv(
+            &stage_path,
+            format!(
+                "a modal analysis runs already in stage {} '{}'; a scene runs at most one",
+                first + 1,
+                before[first].name
+            ),
+        ));
+    }
+    Ok(Stage {
+        name: st.name.clone(),
+        activate,
+        terms: resolve_loads(
+            &file.loads,
+            Some(&st.loads),
+            mesh,
+            &format!("stages[{k}].loads"),
+            inv,
+        )?,
+        load_steps,
+        step_growth,
+        dynamic,
+        modal,
+    })
 }
 
 /// The hexahedron of every block: `element` is for solid blocks, and `incompatible_modes` for
