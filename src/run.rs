@@ -128,8 +128,7 @@ const MAX_BANDS: usize = 8;
 /// balances each band over the ranks and evens out the elements each rank evaluates
 /// (`partition::partition_for_assembly`).
 pub fn construction_bands(scene: &Scene) -> (Vec<u32>, usize) {
-    let placing: Vec<&crate::scene::validate::Stage> =
-        scene.stages.iter().filter(|s| !s.activate.is_empty()).collect();
+    let placing: Vec<&crate::scene::Stage> = scene.stages.iter().filter(|s| !s.activate.is_empty()).collect();
     let n_bands = placing.len().min(MAX_BANDS);
     let mut block_band = vec![0u32; scene.mesh.blocks.len()];
     for (k, stage) in placing.iter().enumerate() {

@@ -77,7 +77,7 @@ use super::error::agree;
 use super::{IoError, Redistribution, ResultsFile, ResultsReader};
 use crate::mesh::Mesh;
 use crate::parallel::broadcast_vec;
-use crate::scene::validate::fnv1a;
+use crate::scene::resolved::fnv1a;
 use crate::scene::Scene;
 use crate::solver::discretization::Discretization;
 use crate::solver::integrator::Rates;
@@ -601,7 +601,7 @@ fn assemble(
 /// this rank's part and builds the stage's progress from them. Local.
 fn stage_progress(
     p: StoredProgress,
-    stage: &crate::scene::validate::Stage,
+    stage: &crate::scene::Stage,
     path: &Path,
     sizes: &Sizes,
 ) -> Result<StageProgress, IoError> {
@@ -682,7 +682,7 @@ pub fn restore(
 
 /// HHT-α's stored force history `h` of the stage in progress: 3 values per owned node when the
 /// stage integrates with α ≠ 0, none otherwise (a Newmark checkpoint cannot continue as HHT-α).
-fn hht_history(h: Vec<f64>, stage: &crate::scene::validate::Stage, nn: usize) -> Result<Vec<f64>, String> {
+fn hht_history(h: Vec<f64>, stage: &crate::scene::Stage, nn: usize) -> Result<Vec<f64>, String> {
     let alpha = stage.dynamic.as_ref().map_or(0.0, |d| d.alpha);
     match (alpha != 0.0, h.len()) {
         (false, 0) => Ok(h),

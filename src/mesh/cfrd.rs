@@ -985,7 +985,7 @@ mod tests {
             env!("CARGO_MANIFEST_DIR")
         );
         let text = std::fs::read_to_string(&path).expect("seed scene");
-        let file = crate::scene::validate::parse(&text, &path).expect("parse");
+        let file = crate::scene::parse::parse(&text, &path).expect("parse");
         file.mesh.cfrd.expect("mesh.cfrd")
     }
 

@@ -5,19 +5,24 @@
 //! scene into typed objects: the materials of each block and the list of physics
 //! [`Term`]s. The solver iterates over the terms; nothing the scene does not ask for is built.
 
+pub mod blocks;
+mod checks;
 pub mod dynamic;
 pub mod error;
 pub mod modal;
+pub mod parse;
 pub mod ranges;
+pub mod resolved;
 pub mod restraint;
 pub mod schema;
+pub mod stages;
 pub mod term;
 #[cfg(test)]
 mod tests;
 pub mod text;
-pub mod validate;
 
 pub use error::SceneError;
+pub use resolved::Scene;
 pub use schema::SceneFile;
+pub use stages::Stage;
 pub use term::Term;
-pub use validate::{Scene, Stage};
