@@ -9,7 +9,8 @@ use super::schema::{MeshSource, SceneFile};
 use super::stages::{append_earthquake, resolve_stages, schedule_stages, Stage};
 use crate::element::hex8_modes::SolidElement;
 use crate::material::BlockMaterial;
-use crate::mesh::cfrd::{cfrd_mesh, CfrdStage};
+use crate::mesh::dam_generator::cfrd_mesh;
+use crate::mesh::dam_stages::CfrdStage;
 use crate::mesh::{generate, Mesh};
 use std::path::{Path, PathBuf};
 

@@ -6,7 +6,7 @@ use super::error::SceneError;
 use super::modal;
 use super::schema::{HydrostaticSpec, LoadsSpec, MeshSource, SceneFile, StageSpec};
 use super::term::Term;
-use crate::mesh::cfrd::CfrdStage;
+use crate::mesh::dam_stages::CfrdStage;
 use crate::mesh::Mesh;
 use std::path::Path;
 
