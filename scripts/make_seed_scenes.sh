@@ -9,7 +9,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-# resolution -> mesh.cfrd keys (omitted keys: the seed dam, src/mesh/cfrd.rs CfrdSpec::default)
+# resolution -> mesh.cfrd keys (omitted keys: the seed dam, src/mesh/dam_spec.rs CfrdSpec::default)
 declare -A mesh=(
   [coarse]="{ fill_layers: 8, elements_per_panel: 1, rockfill_elements: 3, panel_width: 30.0, impoundment_stages: 3 }"
   [medium]="{ fill_layers: 30, elements_per_panel: 1, rockfill_elements: 8, impoundment_stages: 4 }"

@@ -79,7 +79,7 @@ fn asks_for_large_mesh(text: &str) -> bool {
     if crate::scene::text::check_depth(text, "<fuzz>").is_err() {
         return false;
     }
-    crate::scene::validate::parse(text, "<fuzz>").is_ok_and(|f| generated_nodes(&f.mesh) > SCENE_MAX_NODES)
+    crate::scene::parse::parse(text, "<fuzz>").is_ok_and(|f| generated_nodes(&f.mesh) > SCENE_MAX_NODES)
 }
 
 /// Nodes of the mesh a scene's generator would build (0 for a mesh file, or when the spec is

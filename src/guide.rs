@@ -120,7 +120,7 @@
 //!
 //! ## The CFRD generator and the seed scenes
 //!
-//! `mesh: { cfrd: {...} }` ([`CfrdSpec`](crate::mesh::cfrd::CfrdSpec); geometry from spec seismic
+//! `mesh: { cfrd: {...} }` ([`CfrdSpec`](crate::mesh::dam_spec::CfrdSpec); geometry from spec seismic
 //! §5) builds the seed dam: a trapezoidal canyon, the cushion, transition and rockfill zones in
 //! fill layers, the face slab in three stages (stage I cast at fill el. 2780 m, II and III after
 //! the fill) on a slab–cushion interface, vertical and perimetric joints (models §6) against a

@@ -6,7 +6,8 @@
 
 mod common;
 use cfrd::element::hex8::{face_pressure_load, volume};
-use cfrd::mesh::cfrd::{cfrd_mesh, CfrdSpec};
+use cfrd::mesh::dam_generator::cfrd_mesh;
+use cfrd::mesh::dam_spec::CfrdSpec;
 use common::*;
 use std::path::Path;
 

@@ -231,7 +231,7 @@ fn utc_now() -> String {
 
 fn scene_hash(model: &str) -> String {
     let text = std::fs::read(repo().join(scene_path(model))).expect("scene");
-    cfrd::scene::validate::fnv1a(&text)
+    cfrd::scene::resolved::fnv1a(&text)
 }
 
 /// The coarse runs take the 2-core machine one at a time: the tests of a binary run in parallel

@@ -138,8 +138,8 @@ fn a_short_quake_writes_the_seed_dynamic_figures() {
 /// restarted part (which holds no static stage) succeeds, and `cfrd profiles` over both parts
 /// draws the dynamic figures of the uninterrupted run, byte for byte.
 fn check_parts(d: &Path, out: &Path) {
-    let spec: cfrd::mesh::cfrd::CfrdSpec = serde_yaml::from_str(MESH).unwrap();
-    let statics = cfrd::mesh::cfrd::cfrd_mesh(&spec)
+    let spec: cfrd::mesh::dam_spec::CfrdSpec = serde_yaml::from_str(MESH).unwrap();
+    let statics = cfrd::mesh::dam_generator::cfrd_mesh(&spec)
         .unwrap()
         .stages
         .len()

@@ -77,7 +77,7 @@ use super::error::agree;
 use super::{IoError, Redistribution, ResultsFile, ResultsReader};
 use crate::mesh::Mesh;
 use crate::parallel::broadcast_vec;
-use crate::scene::validate::fnv1a;
+use crate::scene::resolved::fnv1a;
 use crate::scene::Scene;
 use crate::solver::discretization::Discretization;
 use crate::solver::integrator::Rates;
@@ -154,39 +154,93 @@ pub fn write(
     let mut file = ResultsFile::create(world, path, &scene.file.name)?;
     file.seal_on_close();
     let comm = file.comm().duplicate();
-    let node_plan = Redistribution::new(&comm, "nodes", n_nodes, &disc.owned_nodes)?;
-    let element_plan = Redistribution::new(&comm, "elements", n_elements, &disc.owned_elements)?;
-    file.write_table("/checkpoint/u", &node_plan, 3, &state.u)?;
-    file.write_table("/checkpoint/f_prev", &node_plan, 3, &state.f_prev)?;
+    let plans = Plans {
+        node: Redistribution::new(&comm, "nodes", n_nodes, &disc.owned_nodes)?,
+        element: Redistribution::new(&comm, "elements", n_elements, &disc.owned_elements)?,
+    };
+    write_state_tables(&mut file, &comm, &plans, disc, &state)?;
+    if let Some(p) = &state.in_stage {
+        write_progress(&mut file, &comm, &plans, p)?;
+    }
+    write_report(&mut file, &comm, report)?;
+    write_attrs(&mut file, scene, &state, comm.size() as u64)?;
+    // read back before it replaces the last checkpoint: a write that failed without an error
+    // (a full device behind MPI-IO) must not replace a good checkpoint by a bad one
+    file.close_checked(|temp| {
+        ResultsReader::open(&comm, temp)?
+            .requiring_checksums()
+            .verify_tables()
+            .map(|_| ())
+    })
+}
+
+/// The redistributions of the node and element tables of a checkpoint.
+struct Plans {
+    /// Rows of the node tables.
+    node: Redistribution,
+    /// Rows of the element tables.
+    element: Redistribution,
+}
+
+/// Writes the tables of the state at the end of the last completed step: displacements,
+/// forces, offsets, placement flags, element references and point states. Collective.
+fn write_state_tables(
+    file: &mut ResultsFile,
+    comm: &SimpleCommunicator,
+    plans: &Plans,
+    disc: &Discretization,
+    state: &ProblemState,
+) -> Result<(), IoError> {
+    let (node_plan, element_plan) = (&plans.node, &plans.element);
+    file.write_table("/checkpoint/u", node_plan, 3, &state.u)?;
+    file.write_table("/checkpoint/f_prev", node_plan, 3, &state.f_prev)?;
     let offsets: Vec<f64> = state.node_offset.iter().flatten().copied().collect();
-    file.write_table("/checkpoint/node_offset", &node_plan, 3, &offsets)?;
+    file.write_table("/checkpoint/node_offset", node_plan, 3, &offsets)?;
     let active = flags(disc.owned_nodes.iter().map(|&n| state.node_active[n as usize]));
-    file.write_table("/checkpoint/node_active", &node_plan, 1, &active)?;
+    file.write_table("/checkpoint/node_active", node_plan, 1, &active)?;
     write_replicated(
-        &mut file,
+        file,
         "/checkpoint/active_block",
         &flags(state.active_block.iter().copied()),
     )?;
     let refs: Vec<f64> = state.elem_ref.iter().flatten().copied().collect();
-    file.write_table("/checkpoint/elem_ref", &element_plan, 24, &refs)?;
-    write_states(&mut file, &comm, &element_plan, "", &state.element_states)?;
-    if let Some(p) = &state.in_stage {
-        if let Some(start) = &p.start_states {
-            write_states(&mut file, &comm, &element_plan, "start_", start)?;
-        }
-        file.write_table("/checkpoint/u_stage_start", &node_plan, 3, &p.u_stage_start)?;
-        let was = flags(p.node_was_active.iter().copied());
-        file.write_table("/checkpoint/node_was_active", &node_plan, 1, &was)?;
-        let path = [p.path.t, p.path.dt, f64::from(p.path.streak)];
-        write_replicated(&mut file, "/checkpoint/load_path", &path)?;
-        if let Some(r) = &p.rates {
-            file.write_table("/checkpoint/velocity", &node_plan, 3, &r.velocity)?;
-            file.write_table("/checkpoint/acceleration", &node_plan, 3, &r.acceleration)?;
-            if !r.history.is_empty() {
-                file.write_table("/checkpoint/hht_history", &node_plan, 3, &r.history)?;
-            }
+    file.write_table("/checkpoint/elem_ref", element_plan, 24, &refs)?;
+    write_states(file, comm, element_plan, "", &state.element_states)
+}
+
+/// Writes the tables of a step checkpoint: the stage's start states and displacements, the
+/// load path, and the rates of a dynamic stage. Collective.
+fn write_progress(
+    file: &mut ResultsFile,
+    comm: &SimpleCommunicator,
+    plans: &Plans,
+    p: &StageProgress,
+) -> Result<(), IoError> {
+    let node_plan = &plans.node;
+    if let Some(start) = &p.start_states {
+        write_states(file, comm, &plans.element, "start_", start)?;
+    }
+    file.write_table("/checkpoint/u_stage_start", node_plan, 3, &p.u_stage_start)?;
+    let was = flags(p.node_was_active.iter().copied());
+    file.write_table("/checkpoint/node_was_active", node_plan, 1, &was)?;
+    let path = [p.path.t, p.path.dt, f64::from(p.path.streak)];
+    write_replicated(file, "/checkpoint/load_path", &path)?;
+    if let Some(r) = &p.rates {
+        file.write_table("/checkpoint/velocity", node_plan, 3, &r.velocity)?;
+        file.write_table("/checkpoint/acceleration", node_plan, 3, &r.acceleration)?;
+        if !r.history.is_empty() {
+            file.write_table("/checkpoint/hht_history", node_plan, 3, &r.history)?;
         }
     }
+    Ok(())
+}
+
+/// Writes the solver counters of `report` as JSON. Collective.
+fn write_report(
+    file: &mut ResultsFile,
+    comm: &SimpleCommunicator,
+    report: &SolveReport,
+) -> Result<(), IoError> {
     // the counters are the same on every rank; rank 0's are stored (timings are per run; the
     // residual history is not needed and may hold a non-finite value, which JSON cannot)
     let counters = SolveReport {
@@ -196,19 +250,30 @@ pub fn write(
         ..report.clone()
     };
     let mut json = serde_json::to_vec(&counters).unwrap_or_default();
-    broadcast_vec(&comm, 0, &mut json);
-    write_replicated(&mut file, "/checkpoint/report", &json)?;
+    broadcast_vec(comm, 0, &mut json);
+    write_replicated(file, "/checkpoint/report", &json)
+}
+
+/// Writes the attributes of `/checkpoint` with their checksum; `n_ranks` is the rank count.
+/// Collective.
+fn write_attrs(
+    file: &mut ResultsFile,
+    scene: &Scene,
+    state: &ProblemState,
+    n_ranks: u64,
+) -> Result<(), IoError> {
+    let mesh = &scene.mesh;
     let stage_name = match state.stages_done {
         0 => "",
         k => scene.stages[k - 1].name.as_str(),
     };
     let numbers = [
         ("checkpoint_version", CHECKPOINT_VERSION),
-        ("n_nodes", n_nodes),
-        ("n_elements", n_elements),
+        ("n_nodes", mesh.num_nodes() as u64),
+        ("n_elements", mesh.elements.len() as u64),
         ("n_blocks", state.active_block.len() as u64),
         ("stages_done", state.stages_done as u64),
-        ("n_ranks", comm.size() as u64),
+        ("n_ranks", n_ranks),
     ];
     let m_hash = mesh_hash(mesh);
     let strings = [
@@ -220,15 +285,7 @@ pub fn write(
     let sum = attrs_checksum(&numbers, &strings);
     let mut all_strings = strings.to_vec();
     all_strings.push(("attrs_checksum", sum.as_str()));
-    file.write_group_attrs("/checkpoint", &numbers, &all_strings)?;
-    // read back before it replaces the last checkpoint: a write that failed without an error
-    // (a full device behind MPI-IO) must not replace a good checkpoint by a bad one
-    file.close_checked(|temp| {
-        ResultsReader::open(&comm, temp)?
-            .requiring_checksums()
-            .verify_tables()
-            .map(|_| ())
-    })
+    file.write_group_attrs("/checkpoint", &numbers, &all_strings)
 }
 
 /// Writes encoded element states as `/checkpoint/<prefix>state_bytes` (each element's length)
@@ -323,168 +380,278 @@ pub fn read(
     agree(world, intact)?;
     let reader = ResultsReader::open(world, path)?.requiring_checksums();
     let comm = reader.comm().duplicate();
+    let (n_nodes, n_elements) = (scene.mesh.num_nodes() as u64, scene.mesh.elements.len() as u64);
+    let (stages_done, within) = agree(&comm, check_header(&reader, path, scene))?;
+    let plans = Plans {
+        node: Redistribution::new(&comm, "nodes", n_nodes, &disc.owned_nodes)?,
+        // the states of every element this rank evaluates (owned and along the partition boundary)
+        element: Redistribution::for_reading(&comm, "elements", n_elements, &disc.elements)?,
+    };
+    let stored = read_stored(&reader, &plans, within)?;
+    let sizes = Sizes {
+        nn: disc.owned_nodes.len(),
+        ne: disc.elements.len(),
+        n_nodes,
+    };
+    agree(&comm, assemble(stored, scene, path, stages_done, &sizes))
+}
+
+/// Checks the version, the attributes, the scene and the mesh of a checkpoint and that it
+/// leaves something to restart; returns the completed stages and whether it is a step
+/// checkpoint.
+fn check_header(reader: &ResultsReader, path: &Path, scene: &Scene) -> Result<(usize, bool), IoError> {
     let mesh = &scene.mesh;
     let (n_nodes, n_elements) = (mesh.num_nodes() as u64, mesh.elements.len() as u64);
-    let checked = (|| {
-        let layout = |m: String| IoError::Layout(format!("{}: {m}", path.display()));
-        let version: u64 = reader
-            .attr("/checkpoint", "checkpoint_version")
-            .map_err(|_| layout("not a cfrd checkpoint (no /checkpoint group)".into()))?;
-        if version != CHECKPOINT_VERSION {
-            return Err(layout(format!(
-                "checkpoint version {version}, this cfrd reads version {CHECKPOINT_VERSION}"
-            )));
-        }
-        let (nn, ne, done, hash, m_hash) = checked_attrs(&reader, path)?;
-        if hash != scene.hash {
-            return Err(layout(format!(
-                "written for another scene (scene hash {hash}, this scene's is {}); a \
-                 checkpoint restarts only the scene file it was written by, unchanged",
-                scene.hash
-            )));
-        }
-        if m_hash != mesh_hash(mesh) || nn != n_nodes || ne != n_elements {
-            return Err(layout(format!(
-                "written for another mesh ({nn} nodes, {ne} elements, mesh hash {m_hash}; \
-                 this mesh: {n_nodes} nodes, {n_elements} elements, mesh hash {})",
-                mesh_hash(mesh)
-            )));
-        }
-        let within = reader.shape("/checkpoint/load_path").is_ok();
-        if (done == 0 && !within) || done >= scene.stages.len() as u64 {
-            return Err(layout(format!(
-                "{done} of the scene's {} stage(s) completed: nothing to restart",
-                scene.stages.len()
-            )));
-        }
-        Ok((done as usize, within))
-    })();
-    let (stages_done, within) = agree(&comm, checked)?;
-    let node_plan = Redistribution::new(&comm, "nodes", n_nodes, &disc.owned_nodes)?;
-    // the states of every element this rank evaluates (owned and along the partition boundary)
-    let element_plan = Redistribution::for_reading(&comm, "elements", n_elements, &disc.elements)?;
-    let (nn, ne) = (disc.owned_nodes.len(), disc.elements.len());
-    let sized = |name: &str, v: Vec<f64>, want: usize| -> Result<Vec<f64>, IoError> {
-        if v.len() == want {
-            Ok(v)
-        } else {
-            Err(IoError::Layout(format!(
-                "{}: /checkpoint/{name} has the wrong number of components",
-                path.display()
-            )))
-        }
-    };
-    let u = reader.read_owned::<f64>("/checkpoint/u", &node_plan)?;
-    let f_prev = reader.read_owned::<f64>("/checkpoint/f_prev", &node_plan)?;
-    let offsets = reader.read_owned::<f64>("/checkpoint/node_offset", &node_plan)?;
-    let refs = reader.read_owned::<f64>("/checkpoint/elem_ref", &element_plan)?;
-    let lens = reader.read_owned::<u64>("/checkpoint/state_bytes", &element_plan)?;
-    let packed = reader.read_owned::<u8>("/checkpoint/states", &element_plan)?;
-    let (node_active, _) = reader.read_all::<i64>("/checkpoint/node_active")?;
-    let (active_block, _) = reader.read_all::<i64>("/checkpoint/active_block")?;
-    let (json, _) = reader.read_all::<u8>("/checkpoint/report")?;
-    let progress = if within {
-        let start = reader.read_owned::<f64>("/checkpoint/u_stage_start", &node_plan)?;
-        let was = reader.read_owned::<i64>("/checkpoint/node_was_active", &node_plan)?;
-        let (path, _) = reader.read_all::<f64>("/checkpoint/load_path")?;
-        let rates = if reader.shape("/checkpoint/velocity").is_ok() {
-            let v = reader.read_owned::<f64>("/checkpoint/velocity", &node_plan)?;
-            let a = reader.read_owned::<f64>("/checkpoint/acceleration", &node_plan)?;
-            let h = match reader.shape("/checkpoint/hht_history") {
-                Ok(_) => reader.read_owned::<f64>("/checkpoint/hht_history", &node_plan)?,
-                Err(_) => Vec::new(),
-            };
-            Some((v, a, h))
-        } else {
-            None
+    let layout = |m: String| IoError::Layout(format!("{}: {m}", path.display()));
+    let version: u64 = reader
+        .attr("/checkpoint", "checkpoint_version")
+        .map_err(|_| layout("not a cfrd checkpoint (no /checkpoint group)".into()))?;
+    if version != CHECKPOINT_VERSION {
+        return Err(layout(format!(
+            "checkpoint version {version}, this cfrd reads version {CHECKPOINT_VERSION}"
+        )));
+    }
+    let (nn, ne, done, hash, m_hash) = checked_attrs(reader, path)?;
+    if hash != scene.hash {
+        return Err(layout(format!(
+            "written for another scene (scene hash {hash}, this scene's is {}); a \
+             checkpoint restarts only the scene file it was written by, unchanged",
+            scene.hash
+        )));
+    }
+    if m_hash != mesh_hash(mesh) || nn != n_nodes || ne != n_elements {
+        return Err(layout(format!(
+            "written for another mesh ({nn} nodes, {ne} elements, mesh hash {m_hash}; \
+             this mesh: {n_nodes} nodes, {n_elements} elements, mesh hash {})",
+            mesh_hash(mesh)
+        )));
+    }
+    let within = reader.shape("/checkpoint/load_path").is_ok();
+    if (done == 0 && !within) || done >= scene.stages.len() as u64 {
+        return Err(layout(format!(
+            "{done} of the scene's {} stage(s) completed: nothing to restart",
+            scene.stages.len()
+        )));
+    }
+    Ok((done as usize, within))
+}
+
+/// The tables of a checkpoint as read, before they are checked.
+struct Stored {
+    /// `u`.
+    u: Vec<f64>,
+    /// `f_prev`.
+    f_prev: Vec<f64>,
+    /// `node_offset`.
+    offsets: Vec<f64>,
+    /// `elem_ref`.
+    refs: Vec<f64>,
+    /// `state_bytes`.
+    lens: Vec<u64>,
+    /// `states`.
+    packed: Vec<u8>,
+    /// `node_active` (every node).
+    node_active: Vec<i64>,
+    /// `active_block`.
+    active_block: Vec<i64>,
+    /// `report`.
+    json: Vec<u8>,
+    /// The tables of a step checkpoint.
+    progress: Option<StoredProgress>,
+}
+
+/// The tables of a step checkpoint as read, before they are checked.
+struct StoredProgress {
+    /// `u_stage_start`.
+    start: Vec<f64>,
+    /// `node_was_active`.
+    was: Vec<i64>,
+    /// `load_path`.
+    path: Vec<f64>,
+    /// `velocity`, `acceleration` and `hht_history` (empty without it) of a dynamic stage.
+    rates: Option<(Vec<f64>, Vec<f64>, Vec<f64>)>,
+    /// `start_state_bytes` and `start_states`.
+    start_states: Option<(Vec<u64>, Vec<u8>)>,
+}
+
+/// This rank's row counts and the mesh's node count, which the stored tables must fit.
+struct Sizes {
+    /// Nodes this rank owns.
+    nn: usize,
+    /// Elements this rank evaluates.
+    ne: usize,
+    /// Nodes of the mesh.
+    n_nodes: u64,
+}
+
+/// Reads this rank's rows of the checkpoint's tables, those of a step checkpoint if `within`.
+/// Collective.
+fn read_stored(reader: &ResultsReader, plans: &Plans, within: bool) -> Result<Stored, IoError> {
+    let (node_plan, element_plan) = (&plans.node, &plans.element);
+    Ok(Stored {
+        u: reader.read_owned::<f64>("/checkpoint/u", node_plan)?,
+        f_prev: reader.read_owned::<f64>("/checkpoint/f_prev", node_plan)?,
+        offsets: reader.read_owned::<f64>("/checkpoint/node_offset", node_plan)?,
+        refs: reader.read_owned::<f64>("/checkpoint/elem_ref", element_plan)?,
+        lens: reader.read_owned::<u64>("/checkpoint/state_bytes", element_plan)?,
+        packed: reader.read_owned::<u8>("/checkpoint/states", element_plan)?,
+        node_active: reader.read_all::<i64>("/checkpoint/node_active")?.0,
+        active_block: reader.read_all::<i64>("/checkpoint/active_block")?.0,
+        json: reader.read_all::<u8>("/checkpoint/report")?.0,
+        progress: match within {
+            true => Some(read_progress(reader, plans)?),
+            false => None,
+        },
+    })
+}
+
+/// Reads this rank's rows of the tables of a step checkpoint. Collective.
+fn read_progress(reader: &ResultsReader, plans: &Plans) -> Result<StoredProgress, IoError> {
+    let (node_plan, element_plan) = (&plans.node, &plans.element);
+    let start = reader.read_owned::<f64>("/checkpoint/u_stage_start", node_plan)?;
+    let was = reader.read_owned::<i64>("/checkpoint/node_was_active", node_plan)?;
+    let (path, _) = reader.read_all::<f64>("/checkpoint/load_path")?;
+    let rates = if reader.shape("/checkpoint/velocity").is_ok() {
+        let v = reader.read_owned::<f64>("/checkpoint/velocity", node_plan)?;
+        let a = reader.read_owned::<f64>("/checkpoint/acceleration", node_plan)?;
+        let h = match reader.shape("/checkpoint/hht_history") {
+            Ok(_) => reader.read_owned::<f64>("/checkpoint/hht_history", node_plan)?,
+            Err(_) => Vec::new(),
         };
-        let start_states = match reader.shape("/checkpoint/start_states") {
-            Ok(_) => Some((
-                reader.read_owned::<u64>("/checkpoint/start_state_bytes", &element_plan)?,
-                reader.read_owned::<u8>("/checkpoint/start_states", &element_plan)?,
-            )),
-            Err(_) => None,
-        };
-        Some((start, was, path, rates, start_states))
+        Some((v, a, h))
     } else {
         None
     };
-    let assembled = (|| {
-        let u = sized("u", u, 3 * nn)?;
-        let f_prev = sized("f_prev", f_prev, 3 * nn)?;
-        let offsets = sized("node_offset", offsets, 3 * nn)?;
-        let refs = sized("elem_ref", refs, 24 * ne)?;
-        let bad = |m: &str| IoError::Layout(format!("{}: {m}", path.display()));
-        if node_active.len() as u64 != n_nodes {
-            return Err(bad("the node flags do not fit the mesh"));
-        }
-        let element_states = unpack_states(&lens, &packed, ne, "states").map_err(|m| bad(&m))?;
-        if active_block.len() < scene.mesh.blocks.len() {
-            return Err(bad("fewer block flags than blocks"));
-        }
-        let report: SolveReport = serde_json::from_slice(&json)
-            .map_err(|e| bad(&format!("the stored solver counters do not parse ({e})")))?;
-        let in_stage = match progress {
+    let start_states = match reader.shape("/checkpoint/start_states") {
+        Ok(_) => Some((
+            reader.read_owned::<u64>("/checkpoint/start_state_bytes", element_plan)?,
+            reader.read_owned::<u8>("/checkpoint/start_states", element_plan)?,
+        )),
+        Err(_) => None,
+    };
+    Ok(StoredProgress {
+        start,
+        was,
+        path,
+        rates,
+        start_states,
+    })
+}
+
+/// `v` if it has `want` values, else an error naming the table `/checkpoint/<name>` of the
+/// checkpoint at `path`.
+fn sized(path: &Path, name: &str, v: Vec<f64>, want: usize) -> Result<Vec<f64>, IoError> {
+    if v.len() == want {
+        Ok(v)
+    } else {
+        Err(IoError::Layout(format!(
+            "{}: /checkpoint/{name} has the wrong number of components",
+            path.display()
+        )))
+    }
+}
+
+/// Checks the stored tables against this rank's part and the scene and builds the state and
+/// the counters from them. Local.
+fn assemble(
+    stored: Stored,
+    scene: &Scene,
+    path: &Path,
+    stages_done: usize,
+    sizes: &Sizes,
+) -> Result<(ProblemState, SolveReport), IoError> {
+    let (nn, ne) = (sizes.nn, sizes.ne);
+    let u = sized(path, "u", stored.u, 3 * nn)?;
+    let f_prev = sized(path, "f_prev", stored.f_prev, 3 * nn)?;
+    let offsets = sized(path, "node_offset", stored.offsets, 3 * nn)?;
+    let refs = sized(path, "elem_ref", stored.refs, 24 * ne)?;
+    let bad = |m: &str| IoError::Layout(format!("{}: {m}", path.display()));
+    let (node_active, active_block) = (stored.node_active, stored.active_block);
+    if node_active.len() as u64 != sizes.n_nodes {
+        return Err(bad("the node flags do not fit the mesh"));
+    }
+    let element_states = unpack_states(&stored.lens, &stored.packed, ne, "states").map_err(|m| bad(&m))?;
+    if active_block.len() < scene.mesh.blocks.len() {
+        return Err(bad("fewer block flags than blocks"));
+    }
+    let report: SolveReport = serde_json::from_slice(&stored.json)
+        .map_err(|e| bad(&format!("the stored solver counters do not parse ({e})")))?;
+    let in_stage = match stored.progress {
+        None => None,
+        Some(p) => Some(stage_progress(p, &scene.stages[stages_done], path, sizes)?),
+    };
+    let state = ProblemState {
+        stages_done,
+        in_stage,
+        active_block: active_block[..scene.mesh.blocks.len()]
+            .iter()
+            .map(|&f| f != 0)
+            .collect(),
+        node_active: node_active.iter().map(|&f| f != 0).collect(),
+        u,
+        f_prev,
+        node_offset: offsets.chunks(3).map(|c| [c[0], c[1], c[2]]).collect(),
+        elem_ref: refs.chunks(24).map(|c| std::array::from_fn(|k| c[k])).collect(),
+        element_states,
+    };
+    Ok((state, report))
+}
+
+/// Checks the stored tables of a step checkpoint against the stage in progress `stage` and
+/// this rank's part and builds the stage's progress from them. Local.
+fn stage_progress(
+    p: StoredProgress,
+    stage: &crate::scene::Stage,
+    path: &Path,
+    sizes: &Sizes,
+) -> Result<StageProgress, IoError> {
+    let (nn, ne) = (sizes.nn, sizes.ne);
+    let bad = |m: &str| IoError::Layout(format!("{}: {m}", path.display()));
+    let StoredProgress {
+        start,
+        was,
+        path: load_path,
+        rates,
+        start_states,
+    } = p;
+    let fits = load_path.len() == 3
+        && (0.0..stage.t_end()).contains(&load_path[0])
+        && load_path[1] > 0.0
+        && load_path[2] >= 0.0
+        && load_path[2].fract() == 0.0
+        && was.len() == nn;
+    if !fits {
+        return Err(bad("the stored load path of the stage in progress is not valid"));
+    }
+    if rates.is_some() != stage.dynamic.is_some() {
+        return Err(bad("the stored velocities do not fit the stage in progress"));
+    }
+    let rates = match rates {
+        Some((v, a, h)) => Some(Rates {
+            velocity: sized(path, "velocity", v, 3 * nn)?,
+            acceleration: sized(path, "acceleration", a, 3 * nn)?,
+            ground: [0.0; 3],
+            history: hht_history(h, stage, nn).map_err(|m| bad(&m))?,
+        }),
+        None => None,
+    };
+    Ok(StageProgress {
+        rates,
+        path: StepControl::resumed(
+            load_path[0],
+            load_path[1],
+            load_path[2] as u32,
+            stage.t_end(),
+            stage.load_steps,
+            stage.step_growth,
+        ),
+        u_stage_start: sized(path, "u_stage_start", start, 3 * nn)?,
+        node_was_active: was.iter().map(|&f| f != 0).collect(),
+        start_states: match start_states {
+            Some((l, p)) => Some(unpack_states(&l, &p, ne, "start states").map_err(|m| bad(&m))?),
             None => None,
-            Some((start, was, path, rates, start_states)) => {
-                let stage = &scene.stages[stages_done];
-                let fits = path.len() == 3
-                    && (0.0..stage.t_end()).contains(&path[0])
-                    && path[1] > 0.0
-                    && path[2] >= 0.0
-                    && path[2].fract() == 0.0
-                    && was.len() == nn;
-                if !fits {
-                    return Err(bad("the stored load path of the stage in progress is not valid"));
-                }
-                if rates.is_some() != stage.dynamic.is_some() {
-                    return Err(bad("the stored velocities do not fit the stage in progress"));
-                }
-                let rates = match rates {
-                    Some((v, a, h)) => Some(Rates {
-                        velocity: sized("velocity", v, 3 * nn)?,
-                        acceleration: sized("acceleration", a, 3 * nn)?,
-                        ground: [0.0; 3],
-                        history: hht_history(h, stage, nn).map_err(|m| bad(&m))?,
-                    }),
-                    None => None,
-                };
-                Some(StageProgress {
-                    rates,
-                    path: StepControl::resumed(
-                        path[0],
-                        path[1],
-                        path[2] as u32,
-                        stage.t_end(),
-                        stage.load_steps,
-                        stage.step_growth,
-                    ),
-                    u_stage_start: sized("u_stage_start", start, 3 * nn)?,
-                    node_was_active: was.iter().map(|&f| f != 0).collect(),
-                    start_states: match start_states {
-                        Some((l, p)) => Some(unpack_states(&l, &p, ne, "start states").map_err(|m| bad(&m))?),
-                        None => None,
-                    },
-                })
-            }
-        };
-        let state = ProblemState {
-            stages_done,
-            in_stage,
-            active_block: active_block[..scene.mesh.blocks.len()]
-                .iter()
-                .map(|&f| f != 0)
-                .collect(),
-            node_active: node_active.iter().map(|&f| f != 0).collect(),
-            u,
-            f_prev,
-            node_offset: offsets.chunks(3).map(|c| [c[0], c[1], c[2]]).collect(),
-            elem_ref: refs.chunks(24).map(|c| std::array::from_fn(|k| c[k])).collect(),
-            element_states,
-        };
-        Ok((state, report))
-    })();
-    agree(&comm, assembled)
+        },
+    })
 }
 
 /// Reads a checkpoint and restores `problem` and the counters in `report` from it; returns the
@@ -515,7 +682,7 @@ pub fn restore(
 
 /// HHT-α's stored force history `h` of the stage in progress: 3 values per owned node when the
 /// stage integrates with α ≠ 0, none otherwise (a Newmark checkpoint cannot continue as HHT-α).
-fn hht_history(h: Vec<f64>, stage: &crate::scene::validate::Stage, nn: usize) -> Result<Vec<f64>, String> {
+fn hht_history(h: Vec<f64>, stage: &crate::scene::Stage, nn: usize) -> Result<Vec<f64>, String> {
     let alpha = stage.dynamic.as_ref().map_or(0.0, |d| d.alpha);
     match (alpha != 0.0, h.len()) {
         (false, 0) => Ok(h),

@@ -26,7 +26,7 @@ use std::path::{Path, PathBuf};
 
 use super::results_reader::{open, results_file, stage_name, step_names};
 use crate::mesh::{Block, Element, ElementKind, Mesh};
-use crate::scene::validate::block_pattern_matches;
+use crate::scene::blocks::block_pattern_matches;
 
 /// Which step of the results file to export.
 #[derive(Debug, Clone, PartialEq)]

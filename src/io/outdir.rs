@@ -28,7 +28,7 @@ pub fn run_output_dir(out: Option<&Path>, scene: Option<&Path>) -> Option<PathBu
         }
         None => crate::scene::DEFAULT_SCENE.to_string(),
     };
-    let file = crate::scene::validate::parse(crate::scene::text::strip_bom(&text), "").ok()?;
+    let file = crate::scene::parse::parse(crate::scene::text::strip_bom(&text), "").ok()?;
     Some(file.output.dir)
 }
 

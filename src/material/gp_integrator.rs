@@ -627,124 +627,240 @@ where
             last_d_eps: *d_eps,
         });
     }
-    let mut point = start.clone();
-    let mut t = 0.0_f64;
-    // Error-controlled substep size, and a shorter limit set by a detected branch change.
-    let mut dt_err = 1.0_f64;
-    let mut dt_limit: Option<f64> = None;
-    let mut accepted = 0_u32;
-    let mut rejected = 0_u32;
-    let mut branch_out = last_branch;
-    let mut last_d_eps = *d_eps;
-    let mut flips_left = MAX_BRANCH_FLIPS;
-    while 1.0 - t > 1.0e-15 {
-        if accepted + rejected >= opts.max_substeps {
+    let mut s = Substepping {
+        point: start.clone(),
+        t: 0.0_f64,
+        dt_err: 1.0_f64,
+        dt_limit: None,
+        accepted: 0_u32,
+        rejected: 0_u32,
+        branch_out: last_branch,
+        last_d_eps: *d_eps,
+        flips_left: MAX_BRANCH_FLIPS,
+    };
+    while 1.0 - s.t > 1.0e-15 {
+        if s.accepted + s.rejected >= opts.max_substeps {
+            let t = s.t;
             return Err(MaterialError::new(format!(
                 "GP substepping: more than NMAX = {} substep attempts (T = {t:.3e})",
                 opts.max_substeps
             )));
         }
-        let dt = dt_err.min(dt_limit.unwrap_or(1.0)).max(opts.dt_min).min(1.0 - t);
-        let at_dt_min = dt <= opts.dt_min * (1.0 + 1.0e-12);
-        let de = d_eps * dt;
-        let mut trial = point.clone();
-        let dd_e = model.elastic_matrix(&trial);
-        let d_sig_e = dd_e * de;
-        let (branch, c0, data1) = model.begin_substep_with_data(&mut trial, &de, &d_sig_e, opts.tol_n)?;
-        let (ds1, dk1) = stage(model, &trial, branch, &de, &dd_e, data1)?;
-        let mut predicted = trial.clone();
-        predicted.sigma += ds1;
-        predicted.kappa += dk1;
-        let dd_e_pred = model.elastic_matrix(&predicted);
-        let mut data2 = None;
-        if !at_dt_min && flips_left > 0 {
-            let (c1, data) = model.indicator_with_data(&predicted, &de, &(dd_e_pred * de), branch)?;
-            if is_flip(branch, classify_indicator(c1, opts.tol_n)) {
-                // Branch change inside the substep: retry up to the estimated change point,
-                // without touching dt_err.
-                rejected += 1;
-                flips_left -= 1;
-                dt_limit = Some(change_point(c0, c1) * dt);
-                continue;
-            }
-            data2 = data;
-        }
-        let (ds2, dk2) = stage(model, &predicted, branch, &de, &dd_e_pred, data2)?;
-        let new_sigma = trial.sigma + (ds1 + ds2) * 0.5;
-        let new_kappa = trial.kappa + (dk1 + dk2) * 0.5;
-        let err = model.substep_error((&new_sigma, &new_kappa), (&ds1, &dk1), (&ds2, &dk2));
-        let r = if err.is_finite() {
-            err.max(opts.eps)
-        } else {
-            f64::INFINITY
+        let Some(trial) = try_substep(model, d_eps, opts, &mut s)? else {
+            continue;
         };
-        let q_raw = 0.9 * (opts.stol / r).sqrt();
-        if r <= opts.stol {
-            // The predicted point carries the substep's memory; it becomes the new point.
-            let mut next = predicted;
-            next.sigma = new_sigma;
-            next.kappa = new_kappa;
-            if let Some(fraction) = model.stop_in_substep(&trial, &mut next) {
-                if !is_finite_point(&next) {
-                    return Err(MaterialError::new(
-                        "GP substepping: non-finite state at a stop inside a substep",
-                    ));
-                }
-                let (tangent, kind) = continuum_tangent(model, &next, branch, &de)?;
-                return Ok(IntegrationResult {
-                    point: next,
-                    tangent,
-                    kind,
-                    last_branch: branch,
-                    substeps: accepted + 1,
-                    rejected,
-                    reached: (t + fraction.clamp(0.0, 1.0) * dt).min(1.0),
-                    last_d_eps: de,
-                });
+        if trial.r <= opts.stol {
+            if let Some(stopped) = accept(model, opts, &mut s, trial)? {
+                return Ok(stopped);
             }
-            let recorded = model.after_accept(&mut next, branch)?;
-            if !is_finite_point(&next) {
-                return Err(MaterialError::new(
-                    "GP substepping: non-finite state after an accepted substep",
-                ));
-            }
-            point = next;
-            branch_out = recorded;
-            last_d_eps = de;
-            accepted += 1;
-            t += dt;
-            // A substep shortened by a branch change or by the end of the step does not
-            // throttle the error-controlled size; otherwise dT ← min(q, 1.1)·dT (spec §8.2).
-            dt_err = if dt < dt_err {
-                dt_err.min(q_raw * dt)
-            } else {
-                q_raw.min(1.1) * dt
-            };
-            dt_err = dt_err.max(opts.dt_min);
-            dt_limit = None;
         } else {
-            if at_dt_min {
-                return Err(MaterialError::new(format!(
-                    "GP substepping: substep size fell below DT_MIN = {:.1e} (T = {t:.4}, R = {r:.3e})",
-                    opts.dt_min
-                )));
-            }
-            rejected += 1;
-            dt_err = (if r.is_finite() { q_raw.max(0.1) } else { 0.1 }) * dt;
-            dt_limit = None;
+            reject(&mut s, &trial, opts)?;
         }
     }
-    let (tangent, kind) = continuum_tangent(model, &point, branch_out, &last_d_eps)?;
+    let (tangent, kind) = continuum_tangent(model, &s.point, s.branch_out, &s.last_d_eps)?;
     Ok(IntegrationResult {
-        point,
+        point: s.point,
         tangent,
         kind,
-        last_branch: branch_out,
-        substeps: accepted,
-        rejected,
+        last_branch: s.branch_out,
+        substeps: s.accepted,
+        rejected: s.rejected,
         reached: 1.0,
-        last_d_eps,
+        last_d_eps: s.last_d_eps,
     })
+}
+
+/// The state of the substepping of [`integrate`] between two substep attempts.
+struct Substepping<const N: usize, const K: usize, M> {
+    /// The point at pseudo-time `t`.
+    point: GpPoint<N, K, M>,
+    /// Pseudo-time T reached, in [0, 1].
+    t: f64,
+    /// Error-controlled substep size.
+    dt_err: f64,
+    /// A shorter limit of the substep size set by a detected branch change.
+    dt_limit: Option<f64>,
+    /// Accepted substeps.
+    accepted: u32,
+    /// Rejected substep attempts (error too large or a branch change).
+    rejected: u32,
+    /// Branch recorded by the last accepted substep.
+    branch_out: Branch,
+    /// Strain increment of the last accepted substep.
+    last_d_eps: SVector<f64, N>,
+    /// Branch changes that may still shorten a substep.
+    flips_left: u32,
+}
+
+/// A substep of the modified Euler scheme, computed by [`try_substep`], before its error
+/// decides whether it is taken.
+struct Trial<const N: usize, const K: usize, M> {
+    /// Substep size dT.
+    dt: f64,
+    /// Whether dT is at DT_MIN.
+    at_dt_min: bool,
+    /// Strain increment dT·Δε.
+    de: SVector<f64, N>,
+    /// The start point after the model's branch decision.
+    trial: GpPoint<N, K, M>,
+    /// The point after the first Euler stage (it carries the substep's memory).
+    predicted: GpPoint<N, K, M>,
+    /// The substep's branch.
+    branch: Branch,
+    /// Stress at the end of the substep (mean of the two stages).
+    new_sigma: SVector<f64, N>,
+    /// Internal variables at the end of the substep.
+    new_kappa: SVector<f64, K>,
+    /// Relative error R of the substep.
+    r: f64,
+    /// Unlimited step-size factor 0.9·√(STOL/R).
+    q_raw: f64,
+}
+
+/// Computes the next substep from `s`: both Euler stages and the error. A branch change
+/// detected at the predicted point counts a rejection, limits the size to the estimated change
+/// point and gives `None`.
+#[inline]
+fn try_substep<F, const N: usize, const K: usize>(
+    model: &F,
+    d_eps: &SVector<f64, N>,
+    opts: &SubstepOptions,
+    s: &mut Substepping<N, K, F::Memory>,
+) -> Result<Option<Trial<N, K, F::Memory>>, MaterialError>
+where
+    F: GpModelFunctions<N, K> + ?Sized,
+{
+    let t = s.t;
+    let dt = s
+        .dt_err
+        .min(s.dt_limit.unwrap_or(1.0))
+        .max(opts.dt_min)
+        .min(1.0 - t);
+    let at_dt_min = dt <= opts.dt_min * (1.0 + 1.0e-12);
+    let de = d_eps * dt;
+    let mut trial = s.point.clone();
+    let dd_e = model.elastic_matrix(&trial);
+    let d_sig_e = dd_e * de;
+    let (branch, c0, data1) = model.begin_substep_with_data(&mut trial, &de, &d_sig_e, opts.tol_n)?;
+    let (ds1, dk1) = stage(model, &trial, branch, &de, &dd_e, data1)?;
+    let mut predicted = trial.clone();
+    predicted.sigma += ds1;
+    predicted.kappa += dk1;
+    let dd_e_pred = model.elastic_matrix(&predicted);
+    let mut data2 = None;
+    if !at_dt_min && s.flips_left > 0 {
+        let (c1, data) = model.indicator_with_data(&predicted, &de, &(dd_e_pred * de), branch)?;
+        if is_flip(branch, classify_indicator(c1, opts.tol_n)) {
+            // Branch change inside the substep: retry up to the estimated change point,
+            // without touching dt_err.
+            s.rejected += 1;
+            s.flips_left -= 1;
+            s.dt_limit = Some(change_point(c0, c1) * dt);
+            return Ok(None);
+        }
+        data2 = data;
+    }
+    let (ds2, dk2) = stage(model, &predicted, branch, &de, &dd_e_pred, data2)?;
+    let new_sigma = trial.sigma + (ds1 + ds2) * 0.5;
+    let new_kappa = trial.kappa + (dk1 + dk2) * 0.5;
+    let err = model.substep_error((&new_sigma, &new_kappa), (&ds1, &dk1), (&ds2, &dk2));
+    let r = if err.is_finite() {
+        err.max(opts.eps)
+    } else {
+        f64::INFINITY
+    };
+    let q_raw = 0.9 * (opts.stol / r).sqrt();
+    Ok(Some(Trial {
+        dt,
+        at_dt_min,
+        de,
+        trial,
+        predicted,
+        branch,
+        new_sigma,
+        new_kappa,
+        r,
+        q_raw,
+    }))
+}
+
+/// Takes the substep `c` (its error is within STOL) and grows the error-controlled size; a
+/// stop inside the substep ends the integration with its result.
+#[inline]
+fn accept<F, const N: usize, const K: usize>(
+    model: &F,
+    opts: &SubstepOptions,
+    s: &mut Substepping<N, K, F::Memory>,
+    c: Trial<N, K, F::Memory>,
+) -> Result<Option<IntegrationResult<N, K, F::Memory>>, MaterialError>
+where
+    F: GpModelFunctions<N, K> + ?Sized,
+{
+    let (t, dt, branch) = (s.t, c.dt, c.branch);
+    // The predicted point carries the substep's memory; it becomes the new point.
+    let mut next = c.predicted;
+    next.sigma = c.new_sigma;
+    next.kappa = c.new_kappa;
+    if let Some(fraction) = model.stop_in_substep(&c.trial, &mut next) {
+        if !is_finite_point(&next) {
+            return Err(MaterialError::new(
+                "GP substepping: non-finite state at a stop inside a substep",
+            ));
+        }
+        let (tangent, kind) = continuum_tangent(model, &next, branch, &c.de)?;
+        return Ok(Some(IntegrationResult {
+            point: next,
+            tangent,
+            kind,
+            last_branch: branch,
+            substeps: s.accepted + 1,
+            rejected: s.rejected,
+            reached: (t + fraction.clamp(0.0, 1.0) * dt).min(1.0),
+            last_d_eps: c.de,
+        }));
+    }
+    let recorded = model.after_accept(&mut next, branch)?;
+    if !is_finite_point(&next) {
+        return Err(MaterialError::new(
+            "GP substepping: non-finite state after an accepted substep",
+        ));
+    }
+    s.point = next;
+    s.branch_out = recorded;
+    s.last_d_eps = c.de;
+    s.accepted += 1;
+    s.t += dt;
+    // A substep shortened by a branch change or by the end of the step does not
+    // throttle the error-controlled size; otherwise dT ← min(q, 1.1)·dT (spec §8.2).
+    s.dt_err = if dt < s.dt_err {
+        s.dt_err.min(c.q_raw * dt)
+    } else {
+        c.q_raw.min(1.1) * dt
+    };
+    s.dt_err = s.dt_err.max(opts.dt_min);
+    s.dt_limit = None;
+    Ok(None)
+}
+
+/// Rejects the substep `c` (its error exceeds STOL) and shrinks the error-controlled size;
+/// an error at DT_MIN.
+#[inline]
+fn reject<const N: usize, const K: usize, M>(
+    s: &mut Substepping<N, K, M>,
+    c: &Trial<N, K, M>,
+    opts: &SubstepOptions,
+) -> Result<(), MaterialError> {
+    let (t, r) = (s.t, c.r);
+    if c.at_dt_min {
+        return Err(MaterialError::new(format!(
+            "GP substepping: substep size fell below DT_MIN = {:.1e} (T = {t:.4}, R = {r:.3e})",
+            opts.dt_min
+        )));
+    }
+    s.rejected += 1;
+    s.dt_err = (if r.is_finite() { c.q_raw.max(0.1) } else { 0.1 }) * c.dt;
+    s.dt_limit = None;
+    Ok(())
 }
 
 /// Fraction of a substep at which the loading indicator, c0 at its start and c1 at the

@@ -247,6 +247,32 @@ impl MohrCoulombInterface {
         let p = &self.p;
         janbu_stiffness(p.k1, p.gamma_w, p.pa, p.n, p.sigma_min, sigma_n)
     }
+
+    /// The update of a point that is open at the end of the step: no traction, the committed
+    /// slip, `closure` and the counted shear displacement `shear`; the open tangent.
+    fn open_update(
+        &self,
+        prev: &MohrCoulombState,
+        closure: f64,
+        shear: [f64; 2],
+    ) -> InterfaceUpdate<MohrCoulombState> {
+        let (k_min, _) = self.shear_stiffness(0.0);
+        let state = MohrCoulombState {
+            tau: [0.0; 2],
+            sigma_n: 0.0,
+            closure,
+            closure_ref: prev.closure_ref,
+            shear,
+            slip: prev.slip,
+            slipping: false,
+        };
+        InterfaceUpdate {
+            state,
+            tangent: open_tangent(k_min, self.p.k2),
+            kind: TangentKind::Elastic,
+            substeps: 1,
+        }
+    }
 }
 
 impl InterfaceModel for MohrCoulombInterface {
@@ -290,22 +316,7 @@ impl InterfaceModel for MohrCoulombInterface {
         let counted = d_shear * contact.shear_fraction;
         let shear = [prev.shear[0] + counted[0], prev.shear[1] + counted[1]];
         if contact.open {
-            let (k_min, _) = self.shear_stiffness(0.0);
-            let state = MohrCoulombState {
-                tau: [0.0; 2],
-                sigma_n: 0.0,
-                closure: contact.closure,
-                closure_ref: prev.closure_ref,
-                shear,
-                slip: prev.slip,
-                slipping: false,
-            };
-            return Ok(InterfaceUpdate {
-                state,
-                tangent: open_tangent(k_min, p.k2),
-                kind: TangentKind::Elastic,
-                substeps: 1,
-            });
+            return Ok(self.open_update(prev, contact.closure, shear));
         }
         let sigma = contact.sigma_end;
         let (k_s, dk_s) = self.shear_stiffness(sigma);

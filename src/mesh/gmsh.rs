@@ -252,6 +252,24 @@ struct SeenElement {
     hex: Option<u32>,
 }
 
+/// One element line as [`Reader::element`] resolved it.
+struct ElementLine<'g> {
+    /// Element id.
+    id: u64,
+    /// Gmsh element type.
+    gmsh_type: u32,
+    /// Dimension of the element.
+    dim: u8,
+    /// Node indices.
+    nodes: Vec<u32>,
+    /// Hash of the type and the node tags (a repeated MSH 2.2 line has the same).
+    nodes_hash: u64,
+    /// Names of its physical groups.
+    groups: &'g [String],
+    /// For a repeated MSH 2.2 line, the hexahedron of the first line (if it made one).
+    repeated: Option<Option<u32>>,
+}
+
 struct Reader<'a> {
     cursor: Cursor<'a>,
     version: Option<Version>,
@@ -513,6 +531,7 @@ impl<'a> Reader<'a> {
         self.node_index.reserve(count);
     }
 
+    /// Reads the `$Elements` section (MSH 2.2 or 4.1).
     fn elements(&mut self) -> Result<(), MeshError> {
         if !self.have_nodes {
             return Err(self.cursor.malformed("$Elements before $Nodes".into()));
@@ -523,71 +542,79 @@ impl<'a> Reader<'a> {
         self.have_elements = true;
         let line = self.cursor.next("Elements")?;
         match self.version {
-            Some(Version::V2) => {
-                let [count] = self.cursor.fixed::<u64, 1>(line, "$Elements count")?;
-                let count = self.cursor.count(count, MIN_RECORD_BYTES, "$Elements count")?;
-                for _ in 0..count {
-                    let line = self.cursor.next("Elements")?;
-                    let v: Vec<i64> = self.cursor.numbers(line, "element")?;
-                    if v.len() < 3 || v[0] < 0 || !(0..=i64::from(u32::MAX)).contains(&v[1]) || v[2] < 0 {
-                        return Err(self.cursor.malformed(format!("element line: '{line}'")));
-                    }
-                    let (id, gmsh_type, n_tags) = (v[0] as u64, v[1] as u32, v[2] as usize);
-                    let (dim, n_nodes, _) = self.type_info(gmsh_type, id)?;
-                    if v.len() != 3 + n_tags + n_nodes {
-                        return Err(self.cursor.malformed(format!(
-                            "element {id}: expected {n_tags} tags and {n_nodes} nodes in '{line}'"
-                        )));
-                    }
-                    let physical = if n_tags > 0 { v[3] } else { 0 };
-                    let groups = if physical != 0 {
-                        vec![self.physical_name(dim, physical)?]
-                    } else {
-                        Vec::new()
-                    };
-                    if let Some(t) = v[3 + n_tags..].iter().find(|&&t| t <= 0) {
-                        return Err(self.cursor.malformed(format!(
-                            "element {id}: node id {t} is not positive (node ids are 1, 2, ...)"
-                        )));
-                    }
-                    let node_tags: Vec<u64> = v[3 + n_tags..].iter().map(|&t| t as u64).collect();
-                    self.element(id, gmsh_type, dim, &node_tags, &groups)?;
-                }
-            }
-            _ => {
-                let [blocks] = self.cursor.fixed::<u64, 1>(line, "$Elements header")?;
-                let blocks =
-                    self.cursor
-                        .count(blocks, MIN_RECORD_BYTES, "$Elements header: entity blocks")?;
-                for _ in 0..blocks {
-                    let line = self.cursor.next("Elements")?;
-                    let [dim, tag, gmsh_type, in_block] =
-                        self.cursor.fixed::<i64, 4>(line, "element block header")?;
-                    if !(0..=3).contains(&dim) || !(0..=i64::from(u32::MAX)).contains(&gmsh_type) {
-                        return Err(self.cursor.malformed(format!("element block header '{line}'")));
-                    }
-                    let in_block =
-                        self.cursor
-                            .count(in_block, MIN_ELEMENT_BYTES, "element block header: elements")?;
-                    let groups = self.entities.get(&(dim as u8, tag)).cloned().unwrap_or_default();
-                    for _ in 0..in_block {
-                        let line = self.cursor.next("Elements")?;
-                        let v: Vec<u64> = self.cursor.numbers(line, "element")?;
-                        let id = *v
-                            .first()
-                            .ok_or_else(|| self.cursor.malformed("empty element line".into()))?;
-                        let (_, n_nodes, _) = self.type_info(gmsh_type as u32, id)?;
-                        if v.len() != 1 + n_nodes {
-                            return Err(self.cursor.malformed(format!(
-                                "element {id}: expected {n_nodes} node tags in '{line}'"
-                            )));
-                        }
-                        self.element(id, gmsh_type as u32, dim as u8, &v[1..], &groups)?;
-                    }
-                }
-            }
+            Some(Version::V2) => self.elements_v2(line)?,
+            _ => self.elements_v4(line)?,
         }
         self.cursor.end("Elements")
+    }
+
+    /// Reads the element lines of MSH 2.2 after the count line `line`.
+    fn elements_v2(&mut self, line: &str) -> Result<(), MeshError> {
+        let [count] = self.cursor.fixed::<u64, 1>(line, "$Elements count")?;
+        let count = self.cursor.count(count, MIN_RECORD_BYTES, "$Elements count")?;
+        for _ in 0..count {
+            let line = self.cursor.next("Elements")?;
+            let v: Vec<i64> = self.cursor.numbers(line, "element")?;
+            if v.len() < 3 || v[0] < 0 || !(0..=i64::from(u32::MAX)).contains(&v[1]) || v[2] < 0 {
+                return Err(self.cursor.malformed(format!("element line: '{line}'")));
+            }
+            let (id, gmsh_type, n_tags) = (v[0] as u64, v[1] as u32, v[2] as usize);
+            let (dim, n_nodes, _) = self.type_info(gmsh_type, id)?;
+            if v.len() != 3 + n_tags + n_nodes {
+                return Err(self.cursor.malformed(format!(
+                    "element {id}: expected {n_tags} tags and {n_nodes} nodes in '{line}'"
+                )));
+            }
+            let physical = if n_tags > 0 { v[3] } else { 0 };
+            let groups = if physical != 0 {
+                vec![self.physical_name(dim, physical)?]
+            } else {
+                Vec::new()
+            };
+            if let Some(t) = v[3 + n_tags..].iter().find(|&&t| t <= 0) {
+                return Err(self.cursor.malformed(format!(
+                    "element {id}: node id {t} is not positive (node ids are 1, 2, ...)"
+                )));
+            }
+            let node_tags: Vec<u64> = v[3 + n_tags..].iter().map(|&t| t as u64).collect();
+            self.element(id, gmsh_type, dim, &node_tags, &groups)?;
+        }
+        Ok(())
+    }
+
+    /// Reads the entity blocks of elements of MSH 4.1 after the header line `line`.
+    fn elements_v4(&mut self, line: &str) -> Result<(), MeshError> {
+        let [blocks] = self.cursor.fixed::<u64, 1>(line, "$Elements header")?;
+        let blocks = self
+            .cursor
+            .count(blocks, MIN_RECORD_BYTES, "$Elements header: entity blocks")?;
+        for _ in 0..blocks {
+            let line = self.cursor.next("Elements")?;
+            let [dim, tag, gmsh_type, in_block] =
+                self.cursor.fixed::<i64, 4>(line, "element block header")?;
+            if !(0..=3).contains(&dim) || !(0..=i64::from(u32::MAX)).contains(&gmsh_type) {
+                return Err(self.cursor.malformed(format!("element block header '{line}'")));
+            }
+            let in_block =
+                self.cursor
+                    .count(in_block, MIN_ELEMENT_BYTES, "element block header: elements")?;
+            let groups = self.entities.get(&(dim as u8, tag)).cloned().unwrap_or_default();
+            for _ in 0..in_block {
+                let line = self.cursor.next("Elements")?;
+                let v: Vec<u64> = self.cursor.numbers(line, "element")?;
+                let id = *v
+                    .first()
+                    .ok_or_else(|| self.cursor.malformed("empty element line".into()))?;
+                let (_, n_nodes, _) = self.type_info(gmsh_type as u32, id)?;
+                if v.len() != 1 + n_nodes {
+                    return Err(self
+                        .cursor
+                        .malformed(format!("element {id}: expected {n_nodes} node tags in '{line}'")));
+                }
+                self.element(id, gmsh_type as u32, dim as u8, &v[1..], &groups)?;
+            }
+        }
+        Ok(())
     }
 
     fn type_info(&self, gmsh_type: u32, id: u64) -> Result<(u8, usize, &'static str), MeshError> {
@@ -637,91 +664,122 @@ impl<'a> Reader<'a> {
                 })
             }
         };
-        let (_, _, type_name) = gmsh_element_type(gmsh_type).unwrap_or((dim, 0, "unknown"));
-        let unsupported = |context: String| MeshError::UnsupportedElementType {
-            at: self.cursor.at(),
+        let line = ElementLine {
+            id,
             gmsh_type,
-            type_name: type_name.to_string(),
-            element_id: id,
-            context,
+            dim,
+            nodes,
+            nodes_hash,
+            groups,
+            repeated,
         };
-        if dim == 3 {
-            let name = match groups {
-                [] if repeated.is_some() => return Ok(()),
-                [] if gmsh_type == GMSH_HEX8 => {
-                    return Err(MeshError::ElementWithoutBlock {
-                        at: self.cursor.at(),
-                        element_id: id,
-                    })
-                }
-                [] => return Err(unsupported("(in no physical volume)".into())),
-                [name] => name,
-                [first, second, ..] => {
+        match dim {
+            3 => self.volume_element(&line),
+            _ => self.lower_element(&line),
+        }
+    }
+
+    /// The error of an element of a type or in a group this reader does not take.
+    fn unsupported(&self, el: &ElementLine, context: String) -> MeshError {
+        let (_, _, type_name) = gmsh_element_type(el.gmsh_type).unwrap_or((el.dim, 0, "unknown"));
+        MeshError::UnsupportedElementType {
+            at: self.cursor.at(),
+            gmsh_type: el.gmsh_type,
+            type_name: type_name.to_string(),
+            element_id: el.id,
+            context,
+        }
+    }
+
+    /// Handles a 3D element: a hexahedron of one physical volume (its block); a repeated MSH 2.2
+    /// line must name the same volume.
+    fn volume_element(&mut self, el: &ElementLine) -> Result<(), MeshError> {
+        let (id, gmsh_type) = (el.id, el.gmsh_type);
+        let name = match el.groups {
+            [] if el.repeated.is_some() => return Ok(()),
+            [] if gmsh_type == GMSH_HEX8 => {
+                return Err(MeshError::ElementWithoutBlock {
+                    at: self.cursor.at(),
+                    element_id: id,
+                })
+            }
+            [] => return Err(self.unsupported(el, "(in no physical volume)".into())),
+            [name] => name,
+            [first, second, ..] => {
+                return Err(MeshError::AmbiguousBlock {
+                    at: self.cursor.at(),
+                    element_id: id,
+                    first: first.clone(),
+                    second: second.clone(),
+                })
+            }
+        };
+        if gmsh_type != GMSH_HEX8 {
+            return Err(self.unsupported(
+                el,
+                format!("in physical volume '{name}' (only type 5, 8-node hexahedra, is supported)"),
+            ));
+        }
+        let block = match self.mesh.block_index(name) {
+            Some(b) => b,
+            None => {
+                self.mesh.blocks.push(Block {
+                    name: name.clone(),
+                    kind: ElementKind::Hex8,
+                    orientation: None,
+                });
+                (self.mesh.blocks.len() - 1) as u32
+            }
+        };
+        match el.repeated {
+            Some(Some(hex)) => {
+                let first = &self.mesh.blocks[self.mesh.elements[hex as usize].block as usize].name;
+                if *first != *name {
                     return Err(MeshError::AmbiguousBlock {
                         at: self.cursor.at(),
                         element_id: id,
                         first: first.clone(),
-                        second: second.clone(),
-                    })
-                }
-            };
-            if gmsh_type != GMSH_HEX8 {
-                return Err(unsupported(format!(
-                    "in physical volume '{name}' (only type 5, 8-node hexahedra, is supported)"
-                )));
-            }
-            let block = match self.mesh.block_index(name) {
-                Some(b) => b,
-                None => {
-                    self.mesh.blocks.push(Block {
-                        name: name.clone(),
-                        kind: ElementKind::Hex8,
-                        orientation: None,
+                        second: name.clone(),
                     });
-                    (self.mesh.blocks.len() - 1) as u32
-                }
-            };
-            match repeated {
-                Some(Some(hex)) => {
-                    let first = &self.mesh.blocks[self.mesh.elements[hex as usize].block as usize].name;
-                    if *first != *name {
-                        return Err(MeshError::AmbiguousBlock {
-                            at: self.cursor.at(),
-                            element_id: id,
-                            first: first.clone(),
-                            second: name.clone(),
-                        });
-                    }
-                }
-                _ => {
-                    let hex = self.mesh.elements.len() as u32;
-                    let mut conn = [0u32; 8];
-                    conn.copy_from_slice(&nodes);
-                    self.mesh.elements.push(Element {
-                        id,
-                        kind: ElementKind::Hex8,
-                        nodes: conn,
-                        block,
-                    });
-                    self.element_lines.push(self.cursor.line_no);
-                    self.seen_elements.insert(
-                        id,
-                        SeenElement {
-                            gmsh_type,
-                            nodes_hash,
-                            hex: Some(hex),
-                        },
-                    );
                 }
             }
-            return Ok(());
+            _ => self.push_hex(el, block),
         }
-        if repeated.is_none() {
+        Ok(())
+    }
+
+    /// Adds the hexahedron `el` to `block` and remembers its id.
+    fn push_hex(&mut self, el: &ElementLine, block: u32) {
+        let hex = self.mesh.elements.len() as u32;
+        let mut conn = [0u32; 8];
+        conn.copy_from_slice(&el.nodes);
+        self.mesh.elements.push(Element {
+            id: el.id,
+            kind: ElementKind::Hex8,
+            nodes: conn,
+            block,
+        });
+        self.element_lines.push(self.cursor.line_no);
+        self.seen_elements.insert(
+            el.id,
+            SeenElement {
+                gmsh_type: el.gmsh_type,
+                nodes_hash: el.nodes_hash,
+                hex: Some(hex),
+            },
+        );
+    }
+
+    /// Handles an element of dimension 0 to 2: its nodes join the node sets of its groups, and
+    /// a quadrangle of a physical surface is kept for the face sets.
+    fn lower_element(&mut self, el: &ElementLine) -> Result<(), MeshError> {
+        let (groups, nodes) = (el.groups, &el.nodes);
+        if el.repeated.is_none() {
             self.seen_elements.insert(
-                id,
+                el.id,
                 SeenElement {
-                    gmsh_type,
-                    nodes_hash,
+                    gmsh_type: el.gmsh_type,
+                    nodes_hash: el.nodes_hash,
                     hex: None,
                 },
             );
@@ -729,27 +787,30 @@ impl<'a> Reader<'a> {
         if groups.is_empty() {
             return Ok(());
         }
-        if dim == 2 && gmsh_type != GMSH_QUAD4 {
-            return Err(unsupported(format!(
-                "in physical surface '{}' (face sets need type 3, 4-node quadrangles)",
-                groups[0]
-            )));
+        if el.dim == 2 && el.gmsh_type != GMSH_QUAD4 {
+            return Err(self.unsupported(
+                el,
+                format!(
+                    "in physical surface '{}' (face sets need type 3, 4-node quadrangles)",
+                    groups[0]
+                ),
+            ));
         }
         for name in groups {
             self.node_set_members
                 .entry(name.clone())
                 .or_default()
-                .extend_from_slice(&nodes);
+                .extend_from_slice(nodes);
         }
-        if dim == 2 {
+        if el.dim == 2 {
             let sets: Vec<usize> = groups
                 .iter()
                 .filter_map(|name| self.face_set_names.iter().position(|n| n == name))
                 .collect();
             let mut quad = [0u32; 4];
-            quad.copy_from_slice(&nodes);
+            quad.copy_from_slice(nodes);
             self.quads.push(QuadRecord {
-                id,
+                id: el.id,
                 line: self.cursor.line_no,
                 nodes: quad,
                 sets,

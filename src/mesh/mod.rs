@@ -4,7 +4,9 @@
 
 use std::collections::BTreeMap;
 
-pub mod cfrd;
+pub mod dam_generator;
+pub mod dam_spec;
+pub mod dam_stages;
 pub mod error;
 pub mod generate;
 pub mod gmsh;

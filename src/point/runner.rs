@@ -3,8 +3,8 @@
 
 use super::csv::write_csv;
 use super::spec::{
-    DirectShearTest, JumpPathTest, NormalControlKind, PointTestFile, ScalarPath, TestSpec,
-    DEFAULT_CONSOLIDATION_STEPS,
+    CyclicTriaxialTest, DirectShearTest, JumpPathTest, NormalControlKind, PointTestFile, ScalarPath,
+    TestSpec, DEFAULT_CONSOLIDATION_STEPS,
 };
 use crate::material::driver_interface::{
     direct_shear, jump_path, jump_path_increments, InterfaceRow, NormalControl,
@@ -200,19 +200,7 @@ impl fmt::Display for Summary {
 /// `<stem>.png` into `out_dir` (created if needed).
 pub fn run_file(path: &Path, out_dir: &Path) -> Result<Summary, PointError> {
     let file = path.to_path_buf();
-    let text = std::fs::read_to_string(path).map_err(|source| PointError::Read {
-        path: file.clone(),
-        source,
-    })?;
-    let spec = parse(&text).map_err(|message| PointError::Parse {
-        file: file.clone(),
-        message,
-    })?;
-    validate(&spec).map_err(|(field, reason)| PointError::Invalid {
-        file: file.clone(),
-        field,
-        reason,
-    })?;
+    let spec = load(&file)?;
     std::fs::create_dir_all(out_dir).map_err(|source| PointError::Io {
         path: out_dir.to_path_buf(),
         source,
@@ -229,12 +217,51 @@ pub fn run_file(path: &Path, out_dir: &Path) -> Result<Summary, PointError> {
     if let (Some(laws), TestSpec::DirectShear(t)) = (&spec.interfaces, &spec.test) {
         return run_crosscheck(&out, &title, laws, t);
     }
-    let (model, cases, figure) = match (&spec.test, &spec.interface, &spec.solid) {
+    let (model, cases, figure) = run_single(&out, &title, &spec)?;
+    let png = out_dir.join(format!("{stem}.png"));
+    out.save(&figure, &png)?;
+    Ok(Summary {
+        title,
+        model: model.to_string(),
+        kind: spec.test.name().to_string(),
+        cases,
+        png,
+        crosscheck: Vec::new(),
+        table: None,
+    })
+}
+
+/// Reads, parses and validates the test file `file`.
+fn load(file: &PathBuf) -> Result<PointTestFile, PointError> {
+    let text = std::fs::read_to_string(file).map_err(|source| PointError::Read {
+        path: file.clone(),
+        source,
+    })?;
+    let spec = parse(&text).map_err(|message| PointError::Parse {
+        file: file.clone(),
+        message,
+    })?;
+    validate(&spec).map_err(|(field, reason)| PointError::Invalid {
+        file: file.clone(),
+        field,
+        reason,
+    })?;
+    Ok(spec)
+}
+
+/// Runs the test of a file with one material and writes its CSV files; returns the model's
+/// name, the cases and the figure.
+fn run_single(
+    out: &Output,
+    title: &str,
+    spec: &PointTestFile,
+) -> Result<(&'static str, Vec<CaseSummary>, Figure), PointError> {
+    Ok(match (&spec.test, &spec.interface, &spec.solid) {
         (TestSpec::DirectShear(t), Some(p), _) => {
-            let runs = shear_runs(&out, p, t, "")?;
+            let runs = shear_runs(out, p, t, "")?;
             let cases = out.interface_csvs(&runs)?;
             let dir = shear_direction(t);
-            (p.name(), cases, shear_figure(&title, p.name(), t, dir, &runs))
+            (p.name(), cases, shear_figure(title, p.name(), t, dir, &runs))
         }
         (TestSpec::JumpPath(t), Some(p), _) => {
             let label = format!("sigma_n0 = {} kPa", fmt_num(t.sigma_n0 / 1e3));
@@ -244,7 +271,7 @@ pub fn run_file(path: &Path, out_dir: &Path) -> Result<Summary, PointError> {
                 .map_err(|e| out.run_error(&label, e))?;
             let runs = vec![(label, "path".to_string(), rows)];
             let cases = out.interface_csvs(&runs)?;
-            (p.name(), cases, jump_figure(&title, p.name(), &runs))
+            (p.name(), cases, jump_figure(title, p.name(), &runs))
         }
         (test, _, Some(p)) => {
             let mut runs = Vec::new();
@@ -256,24 +283,9 @@ pub fn run_file(path: &Path, out_dir: &Path) -> Result<Summary, PointError> {
                 runs.push((plan.label, plan.suffix, rows));
             }
             let cases = out.solid_csvs(&runs)?;
-            (
-                p.name(),
-                cases,
-                solid_figure(&title, p.name(), test.name(), &runs),
-            )
+            (p.name(), cases, solid_figure(title, p.name(), test.name(), &runs))
         }
         _ => unreachable!("validate() pairs the test kind with its material"),
-    };
-    let png = out_dir.join(format!("{stem}.png"));
-    out.save(&figure, &png)?;
-    Ok(Summary {
-        title,
-        model: model.to_string(),
-        kind: spec.test.name().to_string(),
-        cases,
-        png,
-        crosscheck: Vec::new(),
-        table: None,
     })
 }
 
@@ -493,39 +505,56 @@ fn with_seed_defaults(value: serde_yaml::Value) -> serde_yaml::Value {
     }
 }
 
+/// A check's failure: (YAML path, reason).
+type Invalid = (String, String);
+
 /// Checks the file beyond its format; errors are (YAML path, reason).
-fn validate(spec: &PointTestFile) -> Result<(), (String, String)> {
-    let err = |f: &str, r: &str| Err((f.to_string(), r.to_string()));
+fn validate(spec: &PointTestFile) -> Result<(), Invalid> {
+    check_one_material(spec)?;
+    check_materials(spec)?;
+    check_test(&spec.test)
+}
+
+/// `Err` of the YAML path `f` and the reason `r`.
+fn invalid<T>(f: &str, r: &str) -> Result<T, Invalid> {
+    Err((f.to_string(), r.to_string()))
+}
+
+/// Exactly one of `interface`, `interfaces` and `solid` is given.
+fn check_one_material(spec: &PointTestFile) -> Result<(), Invalid> {
     let given = [
         spec.interface.is_some(),
         spec.interfaces.is_some(),
         spec.solid.is_some(),
     ];
     match given.iter().filter(|g| **g).count() {
-        0 => {
-            return err(
-                "interface",
-                "missing: give an `interface`, a list `interfaces` or a `solid` material",
-            )
-        }
-        1 => {}
+        0 => invalid(
+            "interface",
+            "missing: give an `interface`, a list `interfaces` or a `solid` material",
+        ),
+        1 => Ok(()),
         _ => {
             let field = if spec.solid.is_some() {
                 "solid"
             } else {
                 "interfaces"
             };
-            return err(field, "give only one of `interface`, `interfaces` and `solid`");
+            invalid(field, "give only one of `interface`, `interfaces` and `solid`")
         }
     }
+}
+
+/// The material parameters are valid and fit the kind of test: interface laws an interface
+/// test (a comparison a direct-shear test), a solid model a solid test.
+fn check_materials(spec: &PointTestFile) -> Result<(), Invalid> {
     let laws: Vec<(String, &InterfaceParams)> = match (&spec.interface, &spec.interfaces) {
         (Some(p), _) => vec![("interface".to_string(), p)],
         (_, Some(list)) => {
             if list.is_empty() {
-                return err("interfaces", "must list at least one interface law");
+                return invalid("interfaces", "must list at least one interface law");
             }
             if !matches!(spec.test, TestSpec::DirectShear(_)) {
-                return err(
+                return invalid(
                     "test.kind",
                     "a comparison (`interfaces:`) runs a `direct_shear` test",
                 );
@@ -541,7 +570,7 @@ fn validate(spec: &PointTestFile) -> Result<(), (String, String)> {
         p.validate()
             .map_err(|e| (format!("{field}.{}", e.field), e.reason))?;
         if !spec.test.is_interface() {
-            return err(
+            return invalid(
                 "test.kind",
                 &format!(
                     "`{}` is a solid test; this file has an interface law",
@@ -554,7 +583,7 @@ fn validate(spec: &PointTestFile) -> Result<(), (String, String)> {
         p.validate()
             .map_err(|e| (format!("solid.{}", e.field), e.reason))?;
         if spec.test.is_interface() {
-            return err(
+            return invalid(
                 "test.kind",
                 &format!(
                     "`{}` is an interface test; this file has a solid model",
@@ -563,104 +592,121 @@ fn validate(spec: &PointTestFile) -> Result<(), (String, String)> {
             );
         }
     }
-    let list = |name: &str, values: &[f64], positive: bool| -> Result<(), (String, String)> {
-        if values.is_empty() {
-            return Err((format!("test.{name}"), "must list at least one value".into()));
-        }
-        for (i, v) in values.iter().enumerate() {
-            if !(v.is_finite() && (*v > 0.0 || (!positive && *v == 0.0))) {
-                let what = if positive { "> 0" } else { ">= 0" };
-                return Err((
-                    format!("test.{name}[{i}]"),
-                    format!("must be a finite number {what} (Pa, compression positive), got {v}"),
-                ));
-            }
-        }
-        Ok(())
-    };
-    let start = |p0: Option<f64>, steps: Option<usize>| -> Result<(), (String, String)> {
-        if let Some(p0) = p0 {
-            list("initial_pressure", &[p0], true)
-                .map_err(|(_, r)| ("test.initial_pressure".to_string(), r))?;
-        }
-        if steps == Some(0) {
+    Ok(())
+}
+
+/// `test.<name>` lists at least one finite stress, each > 0 if `positive`, else ≥ 0.
+fn check_list(name: &str, values: &[f64], positive: bool) -> Result<(), Invalid> {
+    if values.is_empty() {
+        return Err((format!("test.{name}"), "must list at least one value".into()));
+    }
+    for (i, v) in values.iter().enumerate() {
+        if !(v.is_finite() && (*v > 0.0 || (!positive && *v == 0.0))) {
+            let what = if positive { "> 0" } else { ">= 0" };
             return Err((
-                "test.consolidation_steps".to_string(),
-                "must be at least 1".to_string(),
+                format!("test.{name}[{i}]"),
+                format!("must be a finite number {what} (Pa, compression positive), got {v}"),
             ));
         }
-        Ok(())
-    };
-    match &spec.test {
-        TestSpec::DirectShear(t) => {
-            list("normal_stresses", &t.normal_stresses, false)?;
-            match (t.control, t.normal_stiffness) {
-                (NormalControlKind::Cns, None) => {
-                    return err("test.normal_stiffness", "required by `control: cns` (Pa/m)")
-                }
-                (NormalControlKind::Cns, Some(k)) if !(k.is_finite() && k >= 0.0) => {
-                    return err("test.normal_stiffness", "must be a finite number >= 0 (Pa/m)")
-                }
-                (NormalControlKind::Cnl, Some(_)) => {
-                    return err("test.normal_stiffness", "only used with `control: cns`")
-                }
-                _ => {}
-            }
-            if !t.direction_deg.is_finite() {
-                return err("test.direction_deg", "must be finite");
-            }
-            t.path.validate("test.path")
-        }
+    }
+    Ok(())
+}
+
+/// The single stress `test.<name>` is finite and > 0 if `positive`, else ≥ 0.
+fn check_value(name: &str, value: f64, positive: bool) -> Result<(), Invalid> {
+    check_list(name, &[value], positive).map_err(|(_, r)| (format!("test.{name}"), r))
+}
+
+/// The start of a triaxial test: an initial pressure > 0 and at least one consolidation step.
+fn check_start(p0: Option<f64>, steps: Option<usize>) -> Result<(), Invalid> {
+    if let Some(p0) = p0 {
+        check_value("initial_pressure", p0, true)?;
+    }
+    if steps == Some(0) {
+        return Err((
+            "test.consolidation_steps".to_string(),
+            "must be at least 1".to_string(),
+        ));
+    }
+    Ok(())
+}
+
+/// Checks the values of the test.
+fn check_test(test: &TestSpec) -> Result<(), Invalid> {
+    match test {
+        TestSpec::DirectShear(t) => check_direct_shear(t),
         TestSpec::JumpPath(t) => {
-            list("sigma_n0", &[t.sigma_n0], false).map_err(|(_, r)| ("test.sigma_n0".to_string(), r))?;
+            check_value("sigma_n0", t.sigma_n0, false)?;
             if t.waypoints.is_empty() || t.waypoints.iter().flatten().any(|v| !v.is_finite()) {
-                return err(
+                return invalid(
                     "test.waypoints",
                     "must list at least one finite point [d_s, d_a, d_n] (m)",
                 );
             }
             if t.steps_per_segment == 0 {
-                return err("test.steps_per_segment", "must be at least 1");
+                return invalid("test.steps_per_segment", "must be at least 1");
             }
             Ok(())
         }
         TestSpec::Triaxial(t) => {
-            list("confining_pressures", &t.confining_pressures, true)?;
-            start(t.initial_pressure, t.consolidation_steps)?;
+            check_list("confining_pressures", &t.confining_pressures, true)?;
+            check_start(t.initial_pressure, t.consolidation_steps)?;
             t.path.validate("test.path")
         }
-        TestSpec::CyclicTriaxial(t) => {
-            list("confining_pressures", &t.confining_pressures, true)?;
-            start(t.initial_pressure, t.consolidation_steps)?;
-            if !(t.q_min.is_finite() && t.q_min >= 0.0) {
-                return err("test.q_min", "must be a finite number >= 0 (Pa)");
-            }
-            if !(t.q_max.is_finite() && t.q_max > t.q_min) {
-                return err("test.q_max", "must be a finite number > q_min (Pa)");
-            }
-            if t.cycles == 0 {
-                return err("test.cycles", "must be at least 1");
-            }
-            if t.steps_per_half == 0 {
-                return err("test.steps_per_half", "must be at least 1");
-            }
-            Ok(())
-        }
+        TestSpec::CyclicTriaxial(t) => check_cyclic_triaxial(t),
         TestSpec::Oedometer(t) => {
-            list("initial_pressure", &[t.initial_pressure], true)
-                .map_err(|(_, r)| ("test.initial_pressure".to_string(), r))?;
+            check_value("initial_pressure", t.initial_pressure, true)?;
             t.path.validate("test.path")
         }
         TestSpec::IsotropicCompression(t) => {
-            list("initial_pressure", &[t.initial_pressure], true)
-                .map_err(|(_, r)| ("test.initial_pressure".to_string(), r))?;
-            list("pressures", &t.pressures, true)?;
+            check_value("initial_pressure", t.initial_pressure, true)?;
+            check_list("pressures", &t.pressures, true)?;
             if t.steps_per_segment == 0 {
-                return err("test.steps_per_segment", "must be at least 1");
+                return invalid("test.steps_per_segment", "must be at least 1");
             }
             Ok(())
         }
     }
+}
+
+/// Checks the values of a direct-shear test.
+fn check_direct_shear(t: &DirectShearTest) -> Result<(), Invalid> {
+    check_list("normal_stresses", &t.normal_stresses, false)?;
+    match (t.control, t.normal_stiffness) {
+        (NormalControlKind::Cns, None) => {
+            return invalid("test.normal_stiffness", "required by `control: cns` (Pa/m)")
+        }
+        (NormalControlKind::Cns, Some(k)) if !(k.is_finite() && k >= 0.0) => {
+            return invalid("test.normal_stiffness", "must be a finite number >= 0 (Pa/m)")
+        }
+        (NormalControlKind::Cnl, Some(_)) => {
+            return invalid("test.normal_stiffness", "only used with `control: cns`")
+        }
+        _ => {}
+    }
+    if !t.direction_deg.is_finite() {
+        return invalid("test.direction_deg", "must be finite");
+    }
+    t.path.validate("test.path")
+}
+
+/// Checks the values of a cyclic triaxial test.
+fn check_cyclic_triaxial(t: &CyclicTriaxialTest) -> Result<(), Invalid> {
+    check_list("confining_pressures", &t.confining_pressures, true)?;
+    check_start(t.initial_pressure, t.consolidation_steps)?;
+    if !(t.q_min.is_finite() && t.q_min >= 0.0) {
+        return invalid("test.q_min", "must be a finite number >= 0 (Pa)");
+    }
+    if !(t.q_max.is_finite() && t.q_max > t.q_min) {
+        return invalid("test.q_max", "must be a finite number > q_min (Pa)");
+    }
+    if t.cycles == 0 {
+        return invalid("test.cycles", "must be at least 1");
+    }
+    if t.steps_per_half == 0 {
+        return invalid("test.steps_per_half", "must be at least 1");
+    }
+    Ok(())
 }
 
 fn normal_control(t: &DirectShearTest, sigma_n: f64) -> NormalControl {

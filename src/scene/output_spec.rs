@@ -60,7 +60,7 @@ pub enum ProbeAt {
     #[default]
     Centre,
     /// The element nearest the left abutment (smallest y, the generated dam's left bank,
-    /// [`crate::mesh::cfrd`]) in the row of elements nearest to the elevation.
+    /// [`crate::mesh::dam_generator`]) in the row of elements nearest to the elevation.
     LeftBank,
     /// The element nearest the right abutment (largest y) in that row.
     RightBank,

@@ -7,7 +7,7 @@
 //! and scaled by its size) restricted to the body's fixed DOFs must have rank 6, i.e. the 6×6
 //! Gram matrix of those rows must be regular (smallest eigenvalue above 1e-9 of the largest).
 
-use super::validate::Stage;
+use super::stages::Stage;
 use crate::mesh::{Element, Mesh};
 use nalgebra::{DMatrix, Matrix6, SymmetricEigen, Vector3, Vector6};
 use std::collections::HashMap;

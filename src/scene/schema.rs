@@ -5,7 +5,7 @@
 use crate::element::hex8_modes::SolidElement;
 use crate::element::interface8::InterfaceRule;
 use crate::material::MaterialParams;
-pub use crate::mesh::cfrd::CfrdSpec;
+pub use crate::mesh::dam_spec::CfrdSpec;
 pub use crate::mesh::generate::{BoxSpec, DamSpec};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
@@ -78,7 +78,7 @@ pub struct MeshSource {
     /// node and face sets `upstream`, `downstream`, `base` (z = 0), `crest`, `ymin`, `ymax`.
     #[serde(default)]
     pub dam: Option<DamSpec>,
-    /// A complete CFRD in a trapezoidal canyon (`crate::mesh::cfrd`; omitted keys take the seed
+    /// A complete CFRD in a trapezoidal canyon (`crate::mesh::dam_generator`; omitted keys take the seed
     /// dam's values): blocks `fill_KKK_{cushion,transition,rockfill}`, `slab_S`, `interface_S`,
     /// `joint_vertical_S`, `joint_perimetric_{bottom,left,right}_S` (orientations set); node
     /// sets `foundation`, `plinth`; face set `slab_upstream`; z is the elevation. Without

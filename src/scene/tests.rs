@@ -1,7 +1,7 @@
 //! Scene tests: block patterns, the generated CFRD schedule, and hostile input (issue: bad input
 //! must be an error naming its place).
 
-use super::validate::block_pattern_matches;
+use super::blocks::block_pattern_matches;
 use super::{Scene, SceneError, Term};
 use std::path::Path;
 
