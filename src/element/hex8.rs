@@ -62,6 +62,26 @@ pub const HEX8_FACES: [[usize; 4]; 6] = [
     [4, 5, 6, 7],
 ];
 
+/// Grid offsets `(di, dj, dk)` of the 8 nodes of a structured-grid cell, Gmsh order: node `a`
+/// sits at `(r + 1) / 2`, `r` its corner in [`crate::element::shape::HEX8_REFERENCE_NODES`],
+/// with `i` along ξ, `j` along η and `k` along ζ.
+pub const HEX8_CELL_OFFSETS: [[usize; 3]; 8] = [
+    [0, 0, 0],
+    [1, 0, 0],
+    [1, 1, 0],
+    [0, 1, 0],
+    [0, 0, 1],
+    [1, 0, 1],
+    [1, 1, 1],
+    [0, 1, 1],
+];
+
+/// The 8 nodes, Gmsh order, of cell `(i, j, k)` of a structured grid whose grid point
+/// `(i, j, k)` is the node `node(i, j, k)`; the nodes are asked for in that order.
+pub fn hex8_cell_nodes<T>(i: usize, j: usize, k: usize, node: impl Fn(usize, usize, usize) -> T) -> [T; 8] {
+    HEX8_CELL_OFFSETS.map(|[di, dj, dk]| node(i + di, j + dj, k + dk))
+}
+
 /// The element map is not invertible at a Gauss point (inverted or degenerate element).
 #[derive(Debug, Clone, Copy, PartialEq, Error)]
 #[error("non-positive Jacobian determinant {det_j:.6e} at Gauss point {gauss_point}")]
@@ -406,6 +426,15 @@ pub(crate) mod tests {
     use crate::element::shape::HEX8_REFERENCE_NODES;
     use crate::tensor::Vector6;
 
+    /// The cell offsets are the reference corners mapped from [−1, 1] to {0, 1}.
+    #[test]
+    fn cell_offsets_follow_the_reference_corners() {
+        for (off, r) in HEX8_CELL_OFFSETS.iter().zip(HEX8_REFERENCE_NODES) {
+            assert_eq!(off.map(|d| 2.0 * d as f64 - 1.0), r);
+        }
+        assert_eq!(hex8_cell_nodes(1, 2, 3, |i, j, k| (i, j, k))[6], (2, 3, 4));
+    }
+
     /// A strongly distorted (non-parallelepiped, non-planar faces) but valid hex.
     pub(crate) fn distorted() -> Coords8 {
         [
@@ -676,16 +705,7 @@ pub(crate) mod tests {
         let mut f_global = [Vector3::<f64>::zeros(); 27];
         let mut f_scale = 0.0f64;
         for (ei, ej, ek) in (0..8).map(|e| (e % 2, (e / 2) % 2, e / 4)) {
-            let conn = [
-                node(ei, ej, ek),
-                node(ei + 1, ej, ek),
-                node(ei + 1, ej + 1, ek),
-                node(ei, ej + 1, ek),
-                node(ei, ej, ek + 1),
-                node(ei + 1, ej, ek + 1),
-                node(ei + 1, ej + 1, ek + 1),
-                node(ei, ej + 1, ek + 1),
-            ];
+            let conn = hex8_cell_nodes(ei, ej, ek, node);
             let x = conn.map(|n| coords[n]);
             let g = Hex8Geometry::new(&x).expect("valid");
             let u = linear_field(&x, [0.01, 0.02, -0.03], &a);

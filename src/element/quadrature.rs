@@ -78,8 +78,9 @@ pub const HEX_GAUSS_3X3X3: [QuadraturePoint; 27] = {
     pts
 };
 
-/// The 2×2 Gauss rule on a face, point `a` nearest to quad node `a`; all weights are 1.
-pub const QUAD_GAUSS_2X2: [FacePoint; 4] = {
+/// A 2×2 face rule with unit weights whose point `a` lies at quad node `a` scaled by `scale`
+/// (the nodes are at ±1, so `scale = 1` puts the points exactly on the nodes).
+const fn quad_rule_at_scaled_nodes(scale: f64) -> [FacePoint; 4] {
     let mut pts = [FacePoint {
         st: [0.0; 2],
         weight: 1.0,
@@ -87,27 +88,19 @@ pub const QUAD_GAUSS_2X2: [FacePoint; 4] = {
     let mut a = 0;
     while a < 4 {
         let r = QUAD4_REFERENCE_NODES[a];
-        pts[a].st = [r[0] * GAUSS_2_ABSCISSA, r[1] * GAUSS_2_ABSCISSA];
+        pts[a].st = [r[0] * scale, r[1] * scale];
         a += 1;
     }
     pts
-};
+}
+
+/// The 2×2 Gauss rule on a face, point `a` nearest to quad node `a`; all weights are 1.
+pub const QUAD_GAUSS_2X2: [FacePoint; 4] = quad_rule_at_scaled_nodes(GAUSS_2_ABSCISSA);
 
 /// The 2×2 Newton–Cotes (Lobatto, nodal) rule on a face: point `a` at quad node `a`, all
 /// weights 1 (the trapezoidal rule in each direction; exact for degree ≤ 1 in each variable).
 /// Used by the interface elements (spec §5.4, eq. (E8)).
-pub const QUAD_NEWTON_COTES_2X2: [FacePoint; 4] = {
-    let mut pts = [FacePoint {
-        st: [0.0; 2],
-        weight: 1.0,
-    }; 4];
-    let mut a = 0;
-    while a < 4 {
-        pts[a].st = QUAD4_REFERENCE_NODES[a];
-        a += 1;
-    }
-    pts
-};
+pub const QUAD_NEWTON_COTES_2X2: [FacePoint; 4] = quad_rule_at_scaled_nodes(1.0);
 
 #[cfg(test)]
 mod tests {
@@ -167,5 +160,11 @@ mod tests {
             .map(|g| g.weight * g.st[0].powi(2))
             .sum();
         assert!((q2 - 4.0).abs() < 1e-15);
+        // the nodal rule sits exactly on the nodes, the Gauss rule at the nodes over √3
+        assert_eq!(QUAD_NEWTON_COTES_2X2.map(|g| g.st), QUAD4_REFERENCE_NODES);
+        assert_eq!(
+            QUAD_GAUSS_2X2.map(|g| g.st),
+            QUAD4_REFERENCE_NODES.map(|r| [r[0] * GAUSS_2_ABSCISSA, r[1] * GAUSS_2_ABSCISSA])
+        );
     }
 }

@@ -205,33 +205,23 @@ fn solid_rows<M: SolidModel>(model: &M, name: &str, timing: Timing, rows: &mut V
             cyclic_triaxial(SIGMA3, 0.0, 2500e3, cycles, 25),
         ),
     ];
-    for (path, description, steps) in paths {
-        let recorded = MaterialPointDriver::new(model, &sigma0).and_then(|mut d| {
+    let recorded = paths.into_iter().map(|(path, description, steps)| {
+        let incs = MaterialPointDriver::new(model, &sigma0).and_then(|mut d| {
             d.run(&steps)?;
             Ok(d.rows()
                 .windows(2)
                 .map(|w| Strain6(Vector6::from_fn(|i, _| w[1].strain[i] - w[0].strain[i])))
                 .collect::<Vec<_>>())
         });
-        let row = match recorded {
-            Ok(incs) => time_path(
-                name,
-                path,
-                description,
-                timing,
-                &incs,
-                &|| model.init_state(&sigma0),
-                &|s, d| {
-                    model.update(s, d).map(|u| {
-                        black_box(&u.tangent);
-                        (u.state, u.substeps)
-                    })
-                },
-            ),
-            Err(e) => failed(name, path, description, format!("recording the path: {e}")),
-        };
-        rows.push(row);
-    }
+        (path, description, incs)
+    });
+    let init = || model.init_state(&sigma0);
+    let update = |s: &M::State, d: &Strain6| {
+        model
+            .update(s, d)
+            .map(|u| assembled(u.state, &u.tangent, u.substeps))
+    };
+    time_paths(name, timing, recorded, &init, &update, rows);
 }
 
 /// Records the jump increments of the two interface paths through the CNL driver.
@@ -262,28 +252,44 @@ fn interface_rows<M: InterfaceModel>(model: &M, name: &str, timing: Timing, rows
         ),
     ];
     let control = NormalControl::ConstantLoad { sigma_n: SIGMA_N };
-    for (path, description, shear) in paths {
-        let row = match direct_shear(model, control, &shear) {
-            Ok(driven) => {
-                let incs: Vec<Local3> = driven
-                    .windows(2)
-                    .map(|w| Local3::from_fn(|i, _| w[1].jump[i] - w[0].jump[i]))
-                    .collect();
-                time_path(
-                    name,
-                    path,
-                    description,
-                    timing,
-                    &incs,
-                    &|| model.init_state(SIGMA_N),
-                    &|s, d| {
-                        model.update(s, d).map(|u| {
-                            black_box(&u.tangent);
-                            (u.state, u.substeps)
-                        })
-                    },
-                )
-            }
+    let recorded = paths.into_iter().map(|(path, description, shear)| {
+        let incs = direct_shear(model, control, &shear).map(|driven| {
+            driven
+                .windows(2)
+                .map(|w| Local3::from_fn(|i, _| w[1].jump[i] - w[0].jump[i]))
+                .collect::<Vec<_>>()
+        });
+        (path, description, incs)
+    });
+    let init = || model.init_state(SIGMA_N);
+    let update = |s: &M::State, d: &Local3| {
+        model
+            .update(s, d)
+            .map(|u| assembled(u.state, &u.tangent, u.substeps))
+    };
+    time_paths(name, timing, recorded, &init, &update, rows);
+}
+
+/// What the solver does with an update at a converged step: assembles the tangent (here passed
+/// through [`black_box`] so that it is not discarded) and keeps the state; with the substeps.
+fn assembled<S, T>(state: S, tangent: &T, substeps: u32) -> (S, u32) {
+    black_box(tangent);
+    (state, substeps)
+}
+
+/// Times each recorded path `(path, description, increments)` of model `name` and appends its
+/// row, in order; a path whose recording failed gets a failed row.
+fn time_paths<'p, S, D, E: fmt::Display>(
+    name: &str,
+    timing: Timing,
+    recorded: impl Iterator<Item = (&'p str, String, Result<Vec<D>, E>)>,
+    init: &InitFn<'_, S>,
+    update: &UpdateFn<'_, S, D>,
+    rows: &mut Vec<BenchRow>,
+) {
+    for (path, description, incs) in recorded {
+        let row = match incs {
+            Ok(incs) => time_path(name, path, description, timing, &incs, init, update),
             Err(e) => failed(name, path, description, format!("recording the path: {e}")),
         };
         rows.push(row);

@@ -141,6 +141,30 @@ pub struct HyperbolicState {
     pub primary: bool,
 }
 
+/// The closed part of a step, integrated by substeps: its shear increment, and σ_n
+/// interpolated linearly from `sigma0` at its start to `sigma1` at its end (spec §8.4).
+#[derive(Debug, Clone, Copy)]
+struct ClosedStep {
+    /// Shear jump increment over the closed part (m).
+    inc: Vector2<f64>,
+    /// σ_n at the start of the closed part (Pa, compression positive).
+    sigma0: f64,
+    /// σ_n at the end of the step (Pa, compression positive).
+    sigma1: f64,
+}
+
+impl ClosedStep {
+    /// σ_n at pseudo-time `t` ∈ [0, 1] of the closed part.
+    fn sigma_at(&self, t: f64) -> f64 {
+        self.sigma0 + t * self.d_sigma()
+    }
+
+    /// Change of σ_n over the closed part.
+    fn d_sigma(&self) -> f64 {
+        self.sigma1 - self.sigma0
+    }
+}
+
 /// The Clough–Duncan hyperbolic interface law (spec §3).
 #[derive(Debug, Clone, PartialEq)]
 pub struct HyperbolicInterface {
@@ -251,26 +275,38 @@ impl HyperbolicInterface {
         }
     }
 
+    /// Runs the substeps of the closed part of a step over its pseudo-time t ∈ [0, 1]:
+    /// `substep(t)` advances the state from t and returns its size h and σ_n at t + h. Returns
+    /// the number of substeps; fails past [`MAX_SUBSTEPS`].
+    fn run_substeps(mut substep: impl FnMut(f64) -> (f64, f64)) -> Result<u32, MaterialError> {
+        let mut t = 0.0;
+        let mut substeps = 0;
+        while t < 1.0 {
+            let (h, sigma_h) = substep(t);
+            t += h;
+            substeps += 1;
+            Self::check_substeps(substeps, sigma_h)?;
+        }
+        Ok(substeps)
+    }
+
     /// Shear integration of the closed part of a step (spec §8.4), resultant SL (H6).
     /// A reloading substep stops where ‖τ‖ meets SL_max·τ_f, so primary loading resumes there.
     fn integrate_resultant(
         &self,
         state: &mut HyperbolicState,
-        inc: Vector2<f64>,
-        sigma0: f64,
-        sigma1: f64,
+        step: ClosedStep,
     ) -> Result<u32, MaterialError> {
+        let inc = step.inc;
         let mut tau = Vector2::new(state.tau[0], state.tau[1]);
-        let mut t = 0.0;
-        let mut substeps = 0;
-        while t < 1.0 {
-            let sigma_t = sigma0 + t * (sigma1 - sigma0);
+        let substeps = Self::run_substeps(|t| {
+            let sigma_t = step.sigma_at(t);
             let tau_f = self.strength_floor(sigma_t);
             let sl = tau.norm() / tau_f;
             let primary = Self::is_primary(sl, state.sl_max, tau.dot(&inc));
             let v_t = inc * self.branch_stiffness(primary, sl, sigma_t);
             let mut h =
-                (1.0 - t).min(self.substep_limit(primary, sl, v_t.norm(), tau_f, sigma_t, sigma1 - sigma0));
+                (1.0 - t).min(self.substep_limit(primary, sl, v_t.norm(), tau_f, sigma_t, step.d_sigma()));
             let radius = state.sl_max * tau_f;
             if !primary && v_t.norm() > 0.0 && tau.norm() < radius {
                 let (a, b, c) = (
@@ -282,7 +318,7 @@ impl HyperbolicInterface {
             }
             // σ_n first (spec §8.4), then the shear at the updated σ_n by a Heun (modified
             // Euler) stage pair on the frozen branch.
-            let sigma_h = sigma0 + (t + h) * (sigma1 - sigma0);
+            let sigma_h = step.sigma_at(t + h);
             let tau_f_h = self.strength_floor(sigma_h);
             let k_1 = self.branch_stiffness(primary, tau.norm() / tau_f_h, sigma_h);
             let k_2 = self.branch_stiffness(primary, (tau + inc * (k_1 * h)).norm() / tau_f_h, sigma_h);
@@ -293,10 +329,8 @@ impl HyperbolicInterface {
             }
             state.sl_max = state.sl_max.max(tau.norm() / tau_f_h);
             state.primary = primary;
-            t += h;
-            substeps += 1;
-            Self::check_substeps(substeps, sigma_h)?;
-        }
+            (h, sigma_h)
+        })?;
         state.tau = [tau[0], tau[1]];
         Ok(substeps)
     }
@@ -305,14 +339,11 @@ impl HyperbolicInterface {
     fn integrate_per_direction(
         &self,
         state: &mut HyperbolicState,
-        inc: Vector2<f64>,
-        sigma0: f64,
-        sigma1: f64,
+        step: ClosedStep,
     ) -> Result<u32, MaterialError> {
-        let mut t = 0.0;
-        let mut substeps = 0;
-        while t < 1.0 {
-            let sigma_t = sigma0 + t * (sigma1 - sigma0);
+        let inc = step.inc;
+        Self::run_substeps(|t| {
+            let sigma_t = step.sigma_at(t);
             let tau_f = self.strength_floor(sigma_t);
             let mut h = 1.0 - t;
             let mut primary = [true; 2];
@@ -321,13 +352,13 @@ impl HyperbolicInterface {
                 let sl = tau.abs() / tau_f;
                 primary[i] = Self::is_primary(sl, state.sl_max_dir[i], tau * inc[i]);
                 let v = inc[i] * self.branch_stiffness(primary[i], sl, sigma_t);
-                h = h.min(self.substep_limit(primary[i], sl, v.abs(), tau_f, sigma_t, sigma1 - sigma0));
+                h = h.min(self.substep_limit(primary[i], sl, v.abs(), tau_f, sigma_t, step.d_sigma()));
                 let radius = state.sl_max_dir[i] * tau_f;
                 if !primary[i] && v != 0.0 && tau.abs() < radius {
                     h = h.min((radius * v.signum() - tau) / v);
                 }
             }
-            let sigma_h = sigma0 + (t + h) * (sigma1 - sigma0);
+            let sigma_h = step.sigma_at(t + h);
             let tau_f_h = self.strength_floor(sigma_h);
             let strength = self.strength(sigma_h);
             for i in 0..2 {
@@ -340,11 +371,8 @@ impl HyperbolicInterface {
                 state.sl_max_dir[i] = state.sl_max_dir[i].max(next.abs() / tau_f_h);
             }
             state.primary = primary[0] || primary[1];
-            t += h;
-            substeps += 1;
-            Self::check_substeps(substeps, sigma_h)?;
-        }
-        Ok(substeps)
+            (h, sigma_h)
+        })
     }
 
     /// Continuum tangent at the end state: D = diag(k_1, k_2, k2) (spec §8.4).
@@ -422,12 +450,16 @@ impl InterfaceModel for HyperbolicInterface {
         if contact.was_open {
             state.tau = [0.0; 2];
         }
-        let (sigma0, sigma1) = (contact.sigma_start, contact.sigma_end);
-        let substeps = match p.stress_level {
-            StressLevelMode::Resultant => self.integrate_resultant(&mut state, inc, sigma0, sigma1)?,
-            StressLevelMode::PerDirection => self.integrate_per_direction(&mut state, inc, sigma0, sigma1)?,
+        let step = ClosedStep {
+            inc,
+            sigma0: contact.sigma_start,
+            sigma1: contact.sigma_end,
         };
-        state.sigma_n = sigma1;
+        let substeps = match p.stress_level {
+            StressLevelMode::Resultant => self.integrate_resultant(&mut state, step)?,
+            StressLevelMode::PerDirection => self.integrate_per_direction(&mut state, step)?,
+        };
+        state.sigma_n = step.sigma1;
         if !state.tau.iter().all(|v| v.is_finite()) {
             return Err(MaterialError::new(
                 "hyperbolic interface: non-finite shear stress",

@@ -1174,33 +1174,19 @@ mod tests {
         let mut results = Vec::new();
         for &(s3, q_peak, ea_peak, eta_peak, ev_max, ea_ev, ev_end) in &table {
             let tx = triaxial(&m, s3, s3, 1500, false);
+            let within_rel = |what: &str, got: f64, want: f64, tol: f64| {
+                assert!(rel(got, want) < tol, "σ3 {s3}: {what} {got}");
+            };
+            let within_abs = |what: &str, got: f64, want: f64, tol: f64| {
+                assert!((got - want).abs() < tol, "σ3 {s3}: {what} {got}");
+            };
             // q_peak ±2 %, η_peak ±0.02, strains at peak ±10 %, volumetric strains ±0.1 % abs.
-            assert!(rel(tx.q_peak, q_peak) < 0.02, "σ3 {s3}: q_peak {}", tx.q_peak);
-            assert!(
-                (tx.eta_peak - eta_peak).abs() < 0.02,
-                "σ3 {s3}: η_peak {}",
-                tx.eta_peak
-            );
-            assert!(
-                rel(tx.ea_peak, ea_peak) < 0.10,
-                "σ3 {s3}: ε_a,peak {}",
-                tx.ea_peak
-            );
-            assert!(
-                (tx.ev_max - ev_max).abs() < 1e-3,
-                "σ3 {s3}: ε_v,max {}",
-                tx.ev_max
-            );
-            assert!(
-                rel(tx.ea_at_ev_max, ea_ev) < 0.10,
-                "σ3 {s3}: ε_a at ε_v,max {}",
-                tx.ea_at_ev_max
-            );
-            assert!(
-                (tx.ev_end - ev_end).abs() < 1e-3,
-                "σ3 {s3}: ε_v(15 %) {}",
-                tx.ev_end
-            );
+            within_rel("q_peak", tx.q_peak, q_peak, 0.02);
+            within_abs("η_peak", tx.eta_peak, eta_peak, 0.02);
+            within_rel("ε_a,peak", tx.ea_peak, ea_peak, 0.10);
+            within_abs("ε_v,max", tx.ev_max, ev_max, 1e-3);
+            within_rel("ε_a at ε_v,max", tx.ea_at_ev_max, ea_ev, 0.10);
+            within_abs("ε_v(15 %)", tx.ev_end, ev_end, 1e-3);
             // Dilatancy changes sign at η = M_g (d_g = 0) on the loading branch.
             for &(eta0, eta1, devp) in &tx.dilatancy {
                 if eta0 < 1.74 && eta1 < 1.74 && devp != 0.0 {

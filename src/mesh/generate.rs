@@ -6,6 +6,7 @@
 //! `index + 1`, element ids `index + 1`. Element node order is Gmsh's (`crate::element::hex8`),
 //! with ξ along x (or along the stream), η along y and ζ along z, so `det J > 0`.
 
+use crate::element::hex8::hex8_cell_nodes;
 use crate::mesh::error::MeshError;
 use crate::mesh::{Block, Element, ElementKind, Face, Mesh};
 use std::collections::BTreeMap;
@@ -244,16 +245,7 @@ impl Grid {
             let block = (k * layers / nz) as u32;
             for j in 0..ny {
                 for i in 0..nx {
-                    let nodes = [
-                        self.node(i, j, k),
-                        self.node(i + 1, j, k),
-                        self.node(i + 1, j + 1, k),
-                        self.node(i, j + 1, k),
-                        self.node(i, j, k + 1),
-                        self.node(i + 1, j, k + 1),
-                        self.node(i + 1, j + 1, k + 1),
-                        self.node(i, j + 1, k + 1),
-                    ];
+                    let nodes = hex8_cell_nodes(i, j, k, |a, b, c| self.node(a, b, c));
                     elements.push(Element {
                         id: elements.len() as u64 + 1,
                         kind: ElementKind::Hex8,
