@@ -1,7 +1,7 @@
 //! # Architecture: the rooms of the code and the one-way arrows between them
 //!
 //! ```text
-//!   main.rs ── the command line: parses, dispatches, maps failures to exit codes
+//!   main.rs, cli/ ── the binary's command line: parses, dispatches, maps failures to exit codes
 //!      │
 //!      ▼
 //!   run/     the `cfrd run` pipeline: set-up, the schedule of stages and steps, and the
@@ -23,7 +23,8 @@
 //!   foundation, used by every room above and using none of them:
 //!   scene/ (the YAML scene, resolved)   mesh/ (meshes, Gmsh, the dam generator)
 //!   material/ (constitutive models)     element/ (element kernels)
-//!   seismic/ (spectra, records)         tensor, input, plot, partition (crate)
+//!   seismic/ (spectra, records)         point/ (material-point tests)
+//!   tensor, input, plot (figures)       partition (crate: METIS, ownership, ghosts)
 //! ```
 //!
 //! An arrow points down only: a room may use the rooms below it, never one above, and the
