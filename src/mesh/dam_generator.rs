@@ -84,7 +84,7 @@
 //! * Impoundment levels rise in equal increments; within a stage the solver interpolates the
 //!   water force linearly between the two levels.
 
-use super::dam_spec::{CfrdSpec, Layout};
+use super::dam_spec::{CfrdSpec, Layout, ZONES};
 use super::dam_stages::{schedule, CfrdStage};
 use crate::element::hex8::HEX8_FACES;
 use crate::mesh::error::MeshError;
@@ -106,9 +106,6 @@ pub struct CfrdModel {
     /// y of the panel boundaries (vertical joints and slab ends) at the crest (m).
     pub panel_edges_at_crest: Vec<f64>,
 }
-
-/// The three fill zones, in x order.
-pub(super) const ZONES: [&str; 3] = ["cushion", "transition", "rockfill"];
 
 /// Builds the dam mesh and its construction/impoundment schedule (see the module docs).
 /// Every element is checked ([`Mesh::validate`]) before the mesh is returned.

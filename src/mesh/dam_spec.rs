@@ -3,6 +3,9 @@
 
 use crate::mesh::error::MeshError;
 
+/// The three fill zones of the generated dam, in x order.
+pub(super) const ZONES: [&str; 3] = ["cushion", "transition", "rockfill"];
+
 /// Most impoundment stages of a generated schedule (`mesh.cfrd.impoundment_stages`).
 pub const MAX_IMPOUNDMENT_STAGES: usize = 10_000;
 

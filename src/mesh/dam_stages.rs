@@ -1,8 +1,7 @@
 //! The construction and impoundment schedule of the generated CFRD: one stage per fill layer,
-//! the slab stages and the impoundment stages ([`super::dam_generator`], "Schedule").
+//! the slab stages and the impoundment stages (the generator's "Schedule").
 
-use super::dam_generator::ZONES;
-use super::dam_spec::{CfrdSpec, Layout};
+use super::dam_spec::{CfrdSpec, Layout, ZONES};
 
 /// One stage of the generated schedule.
 #[derive(Debug, Clone, PartialEq)]
