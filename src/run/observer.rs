@@ -128,6 +128,17 @@ pub trait Observer {
 }
 
 impl Run<'_, '_> {
+    /// Closes the results file (collective): the stages completed so far are kept, also when
+    /// a later one failed, and the observers' `on_finish` read it back.
+    pub fn close_results(&mut self) -> Result<(), RunFailure> {
+        let closed = match self.results.take() {
+            Some(f) => f.close(),
+            None => Ok(()),
+        };
+        crate::parallel::any_error(self.world, closed)
+            .map_err(|m| super::options::io_failure("writing results", m))
+    }
+
     /// Publishes the results steps written so far (collective).
     pub fn publish_results(&mut self) -> Result<(), RunFailure> {
         let published = match self.results.as_mut() {

@@ -1,7 +1,7 @@
 //! The results writer: `results.h5` (and its XDMF) of a run, a step at every stage's end and,
 //! inside a dynamic stage, every `output_every` time steps.
 
-use super::observer::{Halt, Observer, Run, RunEnd, StepAt};
+use super::observer::{Halt, Observer, Run, StepAt};
 use super::options::{io_failure, RunFailure};
 use crate::io::hdf5_out::{strain_output_components, OwnedMesh, ResultsFile, StepInfo};
 use crate::io::summary::Phase;
@@ -74,16 +74,6 @@ impl Observer for ResultsWriter {
         run.record.stages_written += 1;
         run.timer.stop();
         Ok(())
-    }
-
-    /// Closes the file: the stages completed so far are kept, also when a later one failed.
-    fn on_finish(&mut self, run: &mut Run<'_, '_>, _end: &RunEnd<'_>) -> Result<(), RunFailure> {
-        run.timer.start(Phase::Output);
-        let closed = match run.results.take() {
-            Some(f) => f.close(),
-            None => Ok(()),
-        };
-        any_error(run.world, closed).map_err(|m| io_failure("writing results", m))
     }
 }
 

@@ -24,7 +24,8 @@ pub struct Plan {
     pub checkpoint: std::path::PathBuf,
 }
 
-/// Runs the stages of `plan` with `observers`, then lets every observer finish. Returns the
+/// Runs the stages of `plan` with `observers`, closes the results file and lets every
+/// observer finish (the summary observer stops the output phase's clock). Returns the
 /// failure of a stage (its message), if one failed; `Err` when an observer ended the run.
 pub fn run_schedule(
     run: &mut Run<'_, '_>,
@@ -37,6 +38,8 @@ pub fn run_schedule(
         .add(Phase::Assembly, Duration::from_secs_f64(report.assembly_seconds));
     run.timer
         .add(Phase::Solve, Duration::from_secs_f64(report.solve_seconds));
+    run.timer.start(Phase::Output);
+    run.close_results()?;
     let end = RunEnd {
         failure: failure.as_deref(),
     };
