@@ -392,7 +392,7 @@
 //! | `cfrd check SCENE` | parses, validates and cross-checks the scene and its mesh without solving; prints the counts of nodes, elements, blocks, fixed DOFs and stages |
 //! | `cfrd schema` | prints the JSON Schema of the scene format |
 //! | `cfrd partition SCENE -n N -o FILE` | METIS partition for N ranks, written to `FILE`; the scene then names it in `partition:` |
-//! | `cfrd compare A B [--tolerance T]` | largest absolute and relative difference of every field of every common step of two results files or run directories (steps matched by stage and time, so a restarted run compares with the uninterrupted one); with `--tolerance`, exit code 1 when a relative difference exceeds T |
+//! | `cfrd compare A B [--tolerance T] [--common]` | largest absolute and relative difference of every field of every step of two results files or run directories (steps matched by stage and time, so a restarted run compares with the uninterrupted one) and the number of steps compared; exit code 1 when one run holds a step or field the other lacks (named on standard error) unless `--common` compares the steps both hold, and with `--tolerance` when a relative difference exceeds T |
 //! | `cfrd export RESULTS --field F... [--stage S \| --step N] [--set NAME [--scene SCENE]] [--probe X,Y,Z...] [-o FILE.csv]` | fields of one step of a results file (or run directory) as CSV, without HDF5 tools: the last step by default, or the last step of stage S, or step N; node fields (`displacement`, `reaction`) or element fields (`stress`, `strain`, `interface_*`), one or more of the same kind; every node or element, those of a block (`--set 'slab_*'`, `*` matches any characters), of a node or face set of the scene (`--scene`), or the nearest node or element centre to each probe point (with its distance). Columns: ids, coordinates, then `<field>_<component>_<units>`; interface fields in their local frame [s, a, n]. Values exactly as stored. Standard output without `-o`; exit code 2 names an unknown field, stage, step or set and lists the ones there are (`cfrd::io::export`, feature `native`) |
 //! | `cfrd overlay LABEL=DIR... -o FIG.png [--quake]` | the slab profiles (seed Figs. 8, 9) of several runs in one figure, e.g. one per interface model; with `--quake` their quake profiles before, after and residual (seed Fig. 13) |
 //! | `cfrd profiles SCENE RUN... -o DIR` | the seed Figs. 7–11 (and 12–20 of a scene with an earthquake) of a run from its results, over several parts of a run made in parts, in order |
@@ -434,7 +434,7 @@
 //! ```sh
 //! mpirun -n 2 cfrd run dam.yaml -o out/a                                   # killed, or stopped
 //! mpirun -n 2 cfrd run dam.yaml --restart out/a/checkpoint.h5 -o out/b     # continues
-//! cfrd compare out/full out/b                                              # steps matched by stage and time
+//! cfrd compare out/full out/b --common                                     # the steps both hold, matched by stage and time
 //! ```
 //!
 //! * At the same rank count a restarted run gives the results of an uninterrupted run bit for
@@ -505,7 +505,7 @@
 //! | code | meaning |
 //! |---|---|
 //! | 0 | success (also a run ended by `--stop-after-stage`) |
-//! | 1 | `cfrd compare --tolerance` found a larger difference; MPI could not be initialized |
+//! | 1 | `cfrd compare` found a larger difference than `--tolerance`, or steps or fields only one run holds (without `--common`); MPI could not be initialized |
 //! | 2 | bad input: YAML, mesh, parameters, options, a checkpoint of another scene; the message names the YAML path, file line or element id |
 //! | 3 | solver failure (a load step that still fails after its cut-backs); `cfrd bench materials` when a model failed |
 //! | 4 | I/O or environment failure: a full disk, a failing file system, an output directory that cannot be created; the last checkpoint and the results published before it are intact |

@@ -13,7 +13,12 @@ fn main() -> ExitCode {
         Command::Schema => commands::schema(),
         Command::Point { test, out } => commands::point(&test, &out),
         Command::Accel { spec, out } => commands::accel(&spec, &out),
-        Command::Compare { a, b, tolerance } => commands::compare(&a, &b, tolerance),
+        Command::Compare {
+            a,
+            b,
+            tolerance,
+            common,
+        } => commands::compare(&a, &b, tolerance, common),
         Command::Export {
             results,
             fields,

@@ -493,6 +493,7 @@ fn multigrid_on_the_coupled_rows_gives_the_same_bits_at_every_run() {
         "rest/results.h5",
         "--tolerance",
         "0",
+        "--common",
     ];
     let o = cfrd(d, &args);
     assert!(o.status.success(), "{}", text(&o));

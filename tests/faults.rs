@@ -56,9 +56,9 @@ fn run_ok(np: usize, dir: &Path, args: &[&str]) {
     assert!(o.status.success(), "{args:?}: {}", text(&o));
 }
 
-/// `cfrd compare A B --tolerance 0` passes: every common step bitwise equal.
+/// `cfrd compare A B --tolerance 0 --common` passes: every common step bitwise equal.
 fn assert_same_results(dir: &Path, a: &str, b: &str) {
-    let o = cfrd(dir, &["compare", a, b, "--tolerance", "0"]);
+    let o = cfrd(dir, &["compare", a, b, "--tolerance", "0", "--common"]);
     assert!(o.status.success(), "{a} vs {b}: {}", text(&o));
 }
 

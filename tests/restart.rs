@@ -141,10 +141,20 @@ fn restart_after_stage_two_is_bitwise_exact() {
     assert!(lines("  λ = ") >= 2 * (STAGES - 2), "{}", text(&o));
     assert_eq!(lines("  λ = 1.000 after"), STAGES - 2, "{}", text(&o));
     assert_bitwise(&d.join("full/results.h5"), &d.join("rest/results.h5"), 2);
-    // `cfrd compare` matches the restarted run's steps to the full run's by stage and time
+    // the restarted run holds the later stages only: `cfrd compare` names the steps the full
+    // run holds beyond them and fails, and with `--common` it compares the common ones,
+    // matched by stage and time, and says how many
     let o = cfrd(d, &["compare", "full", "rest", "--tolerance", "0"]);
+    assert_eq!(o.status.code(), Some(1), "{}", text(&o));
+    for stage in 1..=2 {
+        let missing = format!("step {stage:06} (fill_{stage}) only in full/results.h5");
+        assert!(text(&o).contains(&missing), "no '{missing}' in\n{}", text(&o));
+    }
+    let o = cfrd(d, &["compare", "full", "rest", "--tolerance", "0", "--common"]);
     assert!(o.status.success(), "{}", text(&o));
     let out = text(&o);
+    let compared = format!("compared {} step(s) held by both runs", STAGES - 2);
+    assert!(out.contains(&compared), "no '{compared}' in\n{out}");
     for stage in 3..=STAGES {
         let row = format!("| {stage:06} = {:06} (fill_{stage}) | displacement |", stage - 2);
         assert!(out.contains(&row), "no row '{row}' in\n{out}");

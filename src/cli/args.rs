@@ -72,6 +72,11 @@ pub enum Command {
         /// Largest accepted relative difference (max |a − b| / max |a|): a finite number ≥ 0.
         #[arg(long, value_parser = parse_tolerance)]
         tolerance: Option<f64>,
+        /// Compare the steps both runs hold and accept steps or fields only one of them holds
+        /// (named on standard error), e.g. a run restarted from a stage checkpoint against the
+        /// whole run; without it such a difference fails the comparison (exit code 1).
+        #[arg(long)]
+        common: bool,
     },
     /// Write fields of one step of a results file as CSV: every node or element, a set, or the
     /// nodes or elements nearest to probe points, e.g. `cfrd export out/dam --stage

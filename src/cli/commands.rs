@@ -46,17 +46,28 @@ pub fn accel(spec: &Path, out: &Path) -> ExitCode {
     }
 }
 
-/// `cfrd compare`: the field differences of two runs; exit code 1 above `tolerance`.
-pub fn compare(a: &Path, b: &Path, tolerance: Option<f64>) -> ExitCode {
+/// `cfrd compare`: the field differences of two runs and how many steps were compared; exit
+/// code 1 above `tolerance`, or when one run holds a step or field the other lacks (unless
+/// `common`).
+pub fn compare(a: &Path, b: &Path, tolerance: Option<f64>, common: bool) -> ExitCode {
     match cfrd::io::compare::compare_results(a, b) {
-        Ok(diffs) => {
+        Ok(c) => {
             use std::io::Write as _;
-            let worst = diffs.iter().map(|d| d.relative()).fold(0.0, f64::max);
+            let worst = c.diffs.iter().map(|d| d.relative()).fold(0.0, f64::max);
             // a closed pipe (`cfrd compare a b | head`) is not an error of the comparison
             let mut out = std::io::stdout().lock();
-            let _ = write!(out, "{}", cfrd::io::compare::DiffTable(&diffs))
+            let _ = write!(out, "{}", cfrd::io::compare::DiffTable(&c.diffs))
+                .and_then(|()| writeln!(out, "compared {} step(s) held by both runs", c.compared_steps))
                 .and_then(|()| writeln!(out, "largest relative difference: {worst:.3e}"));
+            for u in &c.unmatched {
+                eprintln!("{}: {u}", if common { "note" } else { "error" });
+            }
+            let missing = !c.unmatched.is_empty() && !common;
+            if missing {
+                eprintln!("error: the runs do not hold the same steps and fields (--common compares those both hold)");
+            }
             match tolerance {
+                _ if missing => ExitCode::from(1),
                 Some(t) if worst > t => ExitCode::from(1),
                 _ => ExitCode::SUCCESS,
             }
