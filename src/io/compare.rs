@@ -117,7 +117,12 @@ pub fn compare_results(a: &Path, b: &Path) -> Result<Comparison, String> {
             continue;
         };
         matched_b.insert(step_b.clone());
-        let files = Pair { fa: &fa, fb: &fb, a, b };
+        let files = Pair {
+            fa: &fa,
+            fb: &fb,
+            a,
+            b,
+        };
         let (mut step_diffs, mut fields_unmatched) = files.compare_step(step, step_b)?;
         out.diffs.append(&mut step_diffs);
         out.unmatched.append(&mut fields_unmatched);
@@ -160,8 +165,12 @@ impl Pair<'_> {
     fn compare_step(&self, step: &str, step_b: &str) -> Result<(Vec<FieldDiff>, Vec<String>), String> {
         let (a, b) = (self.a, self.b);
         let (ga, gb) = (
-            self.fa.group(&format!("/steps/{step}")).map_err(|e| e.to_string())?,
-            self.fb.group(&format!("/steps/{step_b}")).map_err(|e| e.to_string())?,
+            self.fa
+                .group(&format!("/steps/{step}"))
+                .map_err(|e| e.to_string())?,
+            self.fb
+                .group(&format!("/steps/{step_b}"))
+                .map_err(|e| e.to_string())?,
         );
         let stage = stage_name(&ga).unwrap_or_default();
         let label = if step_b == step {
@@ -198,7 +207,13 @@ impl Pair<'_> {
 }
 
 /// The difference of one field of a matched pair of steps (its scale is set by the caller).
-fn field_diff(ga: &hdf5::Group, gb: &hdf5::Group, field: &str, label: &str, paths: [&Path; 2]) -> Result<FieldDiff, String> {
+fn field_diff(
+    ga: &hdf5::Group,
+    gb: &hdf5::Group,
+    field: &str,
+    label: &str,
+    paths: [&Path; 2],
+) -> Result<FieldDiff, String> {
     let read = |g: &hdf5::Group, p: &Path| {
         g.dataset(field)
             .and_then(|d| d.read_raw::<f64>())
