@@ -5,6 +5,7 @@
 
 use super::observer::{Halt, Observer, Run, StepAt};
 use super::options::{input, io_failure, RunFailure, RunOptions, StopAfter};
+use super::schedule::Plan;
 use crate::io::checkpoint::{self, CHECKPOINT_FILE};
 use crate::io::pacing::StageEndWrites;
 use crate::io::summary::Phase;
@@ -72,14 +73,17 @@ impl CheckpointPacer {
         })
     }
 
-    /// The stage (1-based) after which the run stops on `--stop-after-stage`.
-    pub fn stop_after(&self) -> Option<usize> {
-        self.stop_after
-    }
-
-    /// The checkpoint file.
-    pub fn path(&self) -> &Path {
-        &self.path
+    /// The schedule of a run that starts at stage index `first_stage` (inside it at `resume`,
+    /// from a step checkpoint) and ends where `--stop-after-stage` says, naming this
+    /// checkpoint to continue from.
+    pub fn plan(&self, first_stage: usize, resume: Option<StepControl>, verbose: bool) -> Plan {
+        Plan {
+            first_stage,
+            resume,
+            stop_after: self.stop_after,
+            verbose,
+            checkpoint: self.path.clone(),
+        }
     }
 
     /// Writes the checkpoint (`within`: inside a stage) and counts its seconds. Collective.

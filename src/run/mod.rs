@@ -78,14 +78,7 @@ pub fn run_scene(
     let rank = world.rank();
     let verbose = rank == 0 && opts.verbose;
     if verbose {
-        eprintln!(
-            "scene '{}': {} nodes, {} elements, {} DOFs, {} ranks",
-            scene.file.name,
-            scene.mesh.num_nodes(),
-            scene.mesh.elements.len(),
-            3 * scene.mesh.num_nodes(),
-            world.size()
-        );
+        announce(world, scene);
     }
     let out_dir = opts
         .out_dir
@@ -106,13 +99,7 @@ pub fn run_scene(
     let results_path = out_dir.join("results.h5");
     let results = results::create_results(world, scene, &problem, &results_path)?;
     timer.stop();
-    let plan = schedule::Plan {
-        first_stage,
-        resume,
-        stop_after: pacer.stop_after(),
-        verbose,
-        checkpoint: pacer.path().to_path_buf(),
-    };
+    let plan = pacer.plan(first_stage, resume, verbose);
     let mut summary = summary::SummaryWriter {
         verbose,
         started: t_all,
@@ -161,4 +148,16 @@ pub fn run_scene(
     summary
         .summary
         .ok_or_else(|| io_failure("writing the run summary", "no summary"))
+}
+
+/// The run's first progress line: the scene and its size.
+fn announce(world: &SimpleCommunicator, scene: &Scene) {
+    eprintln!(
+        "scene '{}': {} nodes, {} elements, {} DOFs, {} ranks",
+        scene.file.name,
+        scene.mesh.num_nodes(),
+        scene.mesh.elements.len(),
+        3 * scene.mesh.num_nodes(),
+        world.size()
+    );
 }
