@@ -76,7 +76,7 @@ fn run_stages(
                 StepControl::growing(stage.t_end(), stage.load_steps, stage.step_growth)
             }
         };
-        let (path, solved) = run_steps(run, observers, &at, path, started)?;
+        let (path, steps_in_stage, solved) = run_steps(run, observers, &at, path, started)?;
         if let Err(m) = any_error(run.world, solved.and_then(|_| run.problem.end_stage())) {
             return Ok(Some(format!("stage '{}': {m}", stage.name)));
         }
@@ -86,7 +86,7 @@ fn run_stages(
         let end = StepAt {
             stage: &at,
             path: &path,
-            steps_in_stage: 0,
+            steps_in_stage,
             stage_seconds: started.elapsed().as_secs_f64(),
         };
         for o in observers.iter_mut() {
@@ -108,14 +108,15 @@ fn run_stages(
 }
 
 /// The steps of one stage, after telling the observers it starts. Returns where the stage
-/// stands and whether its steps (and the observers) went well; `Err` ends the run.
+/// stands, the steps this run converged in it, and whether its steps (and the observers)
+/// went well; `Err` ends the run.
 fn run_steps(
     run: &mut Run<'_, '_>,
     observers: &mut [&mut dyn Observer],
     at: &StageAt<'_>,
     mut path: StepControl,
     started: Instant,
-) -> Result<(StepControl, Result<(), crate::solver::SolveError>), RunFailure> {
+) -> Result<(StepControl, u32, Result<(), crate::solver::SolveError>), RunFailure> {
     let mut solved = notify(observers, |o| o.on_stage_start(run, at))?;
     let max_cutbacks = run.scene.file.solver.max_cutbacks;
     let mut steps_in_stage = 0u32;
@@ -133,7 +134,7 @@ fn run_steps(
         };
         solved = notify(observers, |o| o.on_step(run, &step))?;
     }
-    Ok((path, solved))
+    Ok((path, steps_in_stage, solved))
 }
 
 /// Calls `event` on every observer in order until one halts: a solver halt is the stage's
