@@ -195,10 +195,17 @@
 //!   dt: 0.01                          # s (default: the record's sample interval)
 //!   damping: { ratio: 0.05, frequencies: [1.0, 5.0] }   # C = a_M·M + a_K·K₀ (optional)
 //!   output_every: 10                  # fields every 10 steps (default: the stage's end only)
-//!   # hht_alpha: -0.05                # HHT-α instead of average acceleration (α ∈ [−1/3, 0])
+//!   hht_alpha: -0.1                   # HHT-α instead of average acceleration (α ∈ [−1/3, 0])
+//!   newton_tol: 1.0e-5                # the quake's Newton tolerance (default solver.newton_tol)
+//!   # linear_solver: canonical_lu     # default distributed_lu (below)
 //!   # predictor: extrapolate          # Newton from u₀ + Δt·v₀ (default none: from u₀)
 //!   # line_search: secant             # default full_step_first
 //! ```
+//!
+//! A dynamic stage has its own `linear_solver` and, if given, its own `newton_tol`; the static
+//! stages' `solver.linear_solver` and `solver.newton_tol` do not reach it. The seed quake
+//! scenes keep their static study's solver for the construction and impoundment and solve the
+//! quake on the default.
 //!
 //! Each time step's Newton iterations start from the last converged displacement (`predictor:
 //! none`, the default). `predictor: extrapolate` starts them from the committed velocity
@@ -221,8 +228,13 @@
 //! `hht_alpha` integrates with HHT-α (β = (1 − α)²/4, γ = 1/2 − α): second-order accurate like
 //! average acceleration, but modes the time step does not resolve are damped, down to a
 //! spectral radius (1 + α)/(1 − α) at ω·Δt → ∞ (0.5 at α = −1/3), while a resolved mode loses
-//! little (α = −0.3 at ω·Δt = 0.63: ζ = 0.38 %). Use it when high-frequency noise (stiff
-//! interfaces, the slab) spoils accelerations; `cfrd::verification`, Dynamics, has the checks.
+//! little (α = −0.3 at ω·Δt = 0.63: ζ = 0.38 %). Average acceleration keeps the response at
+//! the step's Nyquist frequency (a period of 2Δt) undamped: where a contact closes or the
+//! rockfill switches between loading and unloading, the crest acceleration then alternates in
+//! sign from one step to the next, and its peak is a single-step spike. The seed quake scenes
+//! therefore use `hht_alpha: -0.1` (`cfrd::verification`, "The seed quake (coarse mesh)", has
+//! the measurement; Dynamics, the checks). `quake_summary.json` reports each component's raw
+//! peak against its peak low-passed at 20 Hz (`spike_ratio`, near 1 for a resolved response).
 //!
 //! Rayleigh damping (spec seismic §3.3, a_M = 2ζω₁ω₂/(ω₁+ω₂), a_K = 2ζ/(ω₁+ω₂)) takes its two
 //! anchors either as `frequencies: [f1, f2]` (Hz) or as `modes: [i, j]` (1-based): then a
@@ -336,13 +348,20 @@
 //!   17 stages it took 1.9 times the canonical LU's time on 2 ranks, and more memory
 //!   ([`crate::performance`], "Tried and rejected").
 //!
-//! In a dynamic stage both direct solvers change their inner solver: the Jacobian of a time
-//! step is dominated by the mass term, and an incomplete LU of the current Jacobian (ILU(0),
-//! additive Schwarz with ILU(0) on overlapping subdomains for the distributed solver)
-//! preconditions GMRES to 1e-6 for less than the substitutions of complete factors (twice as
-//! fast on the coarse seed quake and over the first 0.88 s of the medium one,
-//! [`crate::performance`]). The canonical solver stays rank-count independent. Their options
-//! there take the prefixes `canonical_dynamic_` and `distributed_dynamic_`:
+//! In a dynamic stage (its `linear_solver`, default `distributed_lu`) both direct solvers change
+//! their inner solver: the Jacobian of a time step is dominated by the mass term, and an
+//! incomplete LU of the current Jacobian (ILU(0), additive Schwarz with ILU(0) on subdomains
+//! overlapping by two layers for the distributed solver) preconditions GMRES to 1e-6 for less
+//! than the substitutions of complete factors (twice as fast on the coarse seed quake and over
+//! the first 0.88 s of the medium one, [`crate::performance`]). With `distributed_lu` no rank
+//! holds the whole Jacobian, its factors or a whole vector (`summary.json`,
+//! `solver_rows_held_per_rank`; `dynamics::the_default_dynamic_solver_holds_no_global_matrix_on_any_rank`);
+//! a solve that fails on ILU(0) is repeated with one more level of fill, up to ILU(2), kept for
+//! the rest of the stage. Results agree between rank counts to the Newton tolerance (1, 2 and
+//! 4 ranks: `dynamics::a_quake_on_the_distributed_solver_agrees_on_1_2_and_4_ranks`). The
+//! canonical solver (`linear_solver: canonical_lu` in the dynamic stage) stays rank-count
+//! independent, bit for bit. Their options there take the prefixes `canonical_dynamic_` and
+//! `distributed_dynamic_`:
 //! `-canonical_dynamic_pc_type lu -canonical_dynamic_pc_factor_mat_solver_type mumps` brings
 //! back lagged complete factors ([`crate::linalg::petsc::lagged_lu`]).
 //!
@@ -386,7 +405,7 @@
 //! | `cfrd run ... --checkpoint stage\|step\|none` | overrides `output.checkpoint` without changing the scene (nor its hash) |
 //! | `cfrd run ... --monitor` | prints every Newton residual and cut-back, as `solver.monitor` does, without changing the scene |
 //! | `cfrd run ... --integration-tol-ratio R` | caps the GP substepping tolerance at R·newton_tol, as `solver.integration_tol_ratio` does, without changing the scene |
-//! | `cfrd run ... --linear-solver iterative\|reduced_amg\|canonical_lu\|distributed_lu` | solves with this linear solver instead of `solver.linear_solver`, without changing the scene: a long run continues from its checkpoint on another solver (its results then agree with the scene's to the solvers' tolerances, not bit for bit) |
+//! | `cfrd run ... --linear-solver iterative\|reduced_amg\|canonical_lu\|distributed_lu` | solves every stage with this linear solver instead of `solver.linear_solver` and the dynamic stages' `linear_solver`, without changing the scene: a long run continues from its checkpoint on another solver (its results then agree with the scene's to the solvers' tolerances, not bit for bit) |
 //! | `cfrd run ... -q` | prints nothing but errors |
 //! | `cfrd run ... --overwrite` | writes into a directory that holds another run's `results.h5`, `checkpoint.h5` or `summary.json` (its old checkpoint is removed first); without it such a directory is refused (exit code 2) unless the run restarts from that directory's own checkpoint. Temporary files of killed runs found there (`.results.h5.partial-<pid>` and the like) are named and removed |
 //! | `cfrd check SCENE` | parses, validates and cross-checks the scene and its mesh without solving; prints the counts of nodes, elements, blocks, fixed DOFs and stages |

@@ -23,7 +23,7 @@ const PROBES: &str = "[ { name: I-A, elevation: 2711.0 }, \
 fn scene() -> String {
     let tail = format!(
         "output: {{ profiles: {{ probes: {PROBES} }} }}\n\
-         earthquake: {{ record: record.csv, damping: {{ ratio: 0.02, frequencies: [1.0, 5.0] }}, output_every: 1 }}"
+         earthquake: {{ record: record.csv, damping: {{ ratio: 0.02, frequencies: [1.0, 5.0] }}, output_every: 1, linear_solver: canonical_lu }}"
     );
     small_dam(
         ELASTIC_FILL,

@@ -234,8 +234,9 @@ pub struct RunArgs {
     /// the integration noise can be continued from its checkpoint with, e.g., R = 0.1.
     #[arg(long, value_name = "R")]
     pub integration_tol_ratio: Option<f64>,
-    /// Solve the Newton corrections with this linear solver instead of the scene's
-    /// `solver.linear_solver`; the scene (and its hash) stays unchanged, so a long run can
+    /// Solve the Newton corrections of every stage with this linear solver instead of the
+    /// scene's `solver.linear_solver` (static stages) and the dynamic stages' own
+    /// `linear_solver`; the scene (and its hash) stays unchanged, so a long run can
     /// continue from its checkpoint on another solver (the results then agree with the
     /// scene's to the solvers' tolerances, not bit for bit).
     #[arg(long, value_name = "iterative|reduced_amg|canonical_lu|distributed_lu", value_parser = parse_linear_solver)]

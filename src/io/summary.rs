@@ -255,6 +255,11 @@ pub struct RunSummary {
     /// imbalance of the assembly, which the partition balances by element counts.
     #[serde(default)]
     pub element_seconds_per_rank: Vec<f64>,
+    /// The most matrix rows each rank's direct solver held at once in this run (of its
+    /// factors, or of its overlapping Schwarz subdomains in a dynamic stage; the whole
+    /// system, `dofs`, for the canonical solver's gathered copy); 0 with the Krylov solvers.
+    #[serde(default)]
+    pub solver_rows_held_per_rank: Vec<u64>,
     /// Peak resident memory (bytes), maximum over ranks.
     pub peak_memory_bytes: u64,
     /// Peak resident memory (bytes) of each rank.
@@ -300,6 +305,13 @@ impl RunSummary {
         let mut all = vec![0.0f64; comm.size() as usize];
         comm.all_gather_into(&seconds, &mut all[..]);
         self.element_seconds_per_rank = all;
+    }
+
+    /// Fills `solver_rows_held_per_rank` from every rank's `rows`. Collective.
+    pub fn gather_solver_rows(&mut self, comm: &SimpleCommunicator, rows: u64) {
+        let mut all = vec![0u64; comm.size() as usize];
+        comm.all_gather_into(&rows, &mut all[..]);
+        self.solver_rows_held_per_rank = all;
     }
 
     /// Pretty JSON text.
@@ -398,6 +410,7 @@ mod tests {
             newton_iterations: 6,
             residual_evaluations: 9,
             element_seconds_per_rank: vec![0.5, 0.25],
+            solver_rows_held_per_rank: vec![120, 96],
             steps: 3,
             cutbacks: 1,
             predictions_dropped: 1,

@@ -56,6 +56,9 @@ pub fn run(world: &SimpleCommunicator, opts: &RunOptions) -> Result<RunSummary, 
     scene.file.solver.monitor |= opts.monitor;
     if let Some(solver) = opts.linear_solver {
         scene.file.solver.linear_solver = solver;
+        for dynamic in scene.stages.iter_mut().filter_map(|s| s.dynamic.as_mut()) {
+            dynamic.linear_solver = solver;
+        }
     }
     if let Some(ratio) = opts.integration_tol_ratio {
         // the same check on every rank: an invalid ratio fails on all alike

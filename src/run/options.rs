@@ -55,7 +55,8 @@ pub struct RunOptions {
     /// [`crate::scene::schema::SolverSpec::integration_tol_ratio`]), without changing the scene
     /// (its hash), so a run stalled at the integration noise continues from its checkpoint.
     pub integration_tol_ratio: Option<f64>,
-    /// The linear solver instead of the scene's `solver.linear_solver` (`--linear-solver`),
+    /// The linear solver of every stage instead of the scene's `solver.linear_solver` and the
+    /// dynamic stages' `linear_solver` (`--linear-solver`),
     /// without changing the scene (its hash), so a run continues from its checkpoint on
     /// another solver.
     pub linear_solver: Option<crate::scene::schema::LinearSolver>,

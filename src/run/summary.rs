@@ -76,6 +76,7 @@ impl SummaryWriter {
         summary.stage_seconds = report.stage_seconds.clone();
         summary.modal = run.record.modal.clone();
         summary.gather_element_seconds(world, run.problem.element_seconds());
+        summary.gather_solver_rows(world, report.solver_rows_held);
         summary.gather_peak_memory(world);
         summary
     }

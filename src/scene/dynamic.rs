@@ -18,10 +18,20 @@
 //!       # predictor: extrapolate            # start each step's Newton iterations from
 //!       #                                   # u₀ + Δt·v₀ (default none: from u₀)
 //!       # line_search: secant               # default full_step_first
+//!       # linear_solver: canonical_lu       # default distributed_lu (see below)
+//!       # newton_tol: 1.0e-5                # default the scene's solver.newton_tol
 //! ```
+//!
+//! A dynamic stage solves its Newton corrections with its own `linear_solver`, not the static
+//! stages' `solver.linear_solver`: by default `distributed_lu`, which in a time step is GMRES
+//! preconditioned by additive Schwarz with ILU(0) subdomains on the distributed Jacobian
+//! ([`crate::linalg::petsc::lagged_lu`]): no rank holds the whole matrix, its factors or a
+//! whole vector, so memory and work per rank fall with the rank count. `canonical_lu` gathers
+//! the Jacobian onto every rank and gives the same bits at any rank count; `iterative` and
+//! `reduced_amg` are the static solvers of the same names.
 
 use super::error::SceneError;
-use super::schema::{LineSearch, Predictor};
+use super::schema::{LineSearch, LinearSolver, Predictor};
 use crate::seismic::Accelerogram;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
@@ -75,6 +85,21 @@ pub struct DynamicSpec {
     /// path-dependent materials ([`crate::performance`], "The seed quake (coarse mesh)").
     #[serde(default = "full_step_first")]
     pub line_search: LineSearch,
+    /// Linear solver of the time steps' Newton corrections: `distributed_lu` (the default:
+    /// additive Schwarz with ILU(0) subdomains, nothing global on any rank), `canonical_lu`
+    /// (the same bits at any rank count; the Jacobian gathered onto every rank), `iterative` or
+    /// `reduced_amg` (the module docs). The static stages' `solver.linear_solver` does not
+    /// apply here.
+    #[serde(default = "distributed_lu")]
+    pub linear_solver: LinearSolver,
+    /// Newton's relative residual tolerance in this stage; default the scene's
+    /// `solver.newton_tol` (so a quake can be solved more tightly than the construction).
+    #[serde(default)]
+    pub newton_tol: Option<f64>,
+}
+
+fn distributed_lu() -> LinearSolver {
+    LinearSolver::DistributedLu
 }
 
 fn full_step_first() -> LineSearch {
@@ -187,6 +212,10 @@ pub struct DynamicStage {
     pub predictor: Predictor,
     /// How a time step's Newton corrections are scaled.
     pub line_search: LineSearch,
+    /// The linear solver of the time steps' Newton corrections.
+    pub linear_solver: LinearSolver,
+    /// Newton's tolerance in this stage, if not the scene's.
+    pub newton_tol: Option<f64>,
 }
 
 /// Largest number of time steps of one dynamic stage.
@@ -225,6 +254,11 @@ pub fn resolve(
     }
     check_newmark(&spec.newmark).map_err(|m| inv("newmark", m))?;
     let alpha = check_hht(spec.hht_alpha, &spec.newmark).map_err(|m| inv("hht_alpha", m))?;
+    if let Some(tol) = spec.newton_tol {
+        if !(tol.is_finite() && tol > 0.0 && tol < 1.0) {
+            return Err(inv("newton_tol", format!("{tol} must lie in (0, 1)")));
+        }
+    }
     let damping = match &spec.damping {
         Some(d) => Some(check_damping(d).map_err(|m| inv("damping", m))?),
         None => None,
@@ -241,6 +275,8 @@ pub fn resolve(
         output_every: spec.output_every,
         predictor: spec.predictor,
         line_search: spec.line_search,
+        linear_solver: spec.linear_solver,
+        newton_tol: spec.newton_tol,
     })
 }
 

@@ -290,10 +290,12 @@ pub struct SolverSpec {
     /// (rank 0, to standard error). Default false.
     #[serde(default)]
     pub monitor: bool,
-    /// Linear solver of the Newton corrections: `iterative` (default; CG or GMRES with GAMG,
-    /// PETSc options override) or `canonical_lu`, a sequential LU of the whole system on every
-    /// rank in the mesh's own DOF order, whose results are the same bit for bit at any rank
-    /// count (`linalg::petsc::CanonicalLu`; up to some 10⁵ DOFs).
+    /// Linear solver of the static stages' Newton corrections: `iterative` (default; CG or
+    /// GMRES with GAMG, PETSc options override), `reduced_amg`, `distributed_lu` or
+    /// `canonical_lu`, a sequential LU of the whole system on every rank in the mesh's own DOF
+    /// order, whose results are the same bit for bit at any rank count
+    /// (`linalg::petsc::CanonicalLu`; up to some 10⁵ DOFs). Dynamic stages have their own
+    /// (`earthquake.linear_solver`, [`crate::scene::dynamic`]).
     #[serde(default)]
     pub linear_solver: LinearSolver,
     /// With `canonical_lu` or `distributed_lu`: keep the factors of an earlier Jacobian of the

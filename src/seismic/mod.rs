@@ -16,6 +16,7 @@ pub mod algorithm;
 pub mod at2;
 pub mod command;
 pub mod correction;
+pub mod filter;
 pub mod generator;
 pub mod measures;
 pub mod record;

@@ -13,9 +13,8 @@ impl Model<'_> {
     /// the largest substepping tolerance STOL of the scene's GP materials lies above
     /// `newton_tol` and the residual within a decade of it, the residual may be the noise of
     /// the stress integration (spec models §8.2; `solver.integration_tol_ratio`). Empty
-    /// otherwise.
-    pub(super) fn stall_hint(&self, residual: f64) -> String {
-        let tol = self.scene.file.solver.newton_tol;
+    /// otherwise. `tol` is the stage's `newton_tol`.
+    pub(super) fn stall_hint(&self, residual: f64, tol: f64) -> String {
         let stol = self
             .scene
             .block_materials

@@ -36,6 +36,8 @@ pub(super) struct StepTarget {
     /// Whether the initial guess is the integrator's prediction (then checked against
     /// [`PREDICTION_REJECTED_AT`]).
     pub predicted: bool,
+    /// The relative residual at which the step has converged (the stage's `newton_tol`).
+    pub tolerance: f64,
 }
 
 /// A predicted start whose relative residual (‖F‖ / max(‖f_ext‖, ‖f_int‖, ‖g‖)) reaches this
@@ -86,6 +88,9 @@ pub(super) fn solve(
     let solved = snes.solve(&mut step, &mut r, &mut x);
     step.report.factorizations += snes.take_factorizations();
     step.report.multigrid_builds += snes.take_multigrid_builds();
+    if let Some(rows) = snes.held_rows()? {
+        step.report.solver_rows_held = step.report.solver_rows_held.max(rows);
+    }
     step.report.solve_seconds += (t0.elapsed().as_secs_f64() - step.assembly_seconds).max(0.0);
     let (outcome, iterations) = solved?;
     step.conclude(outcome, iterations, &x)
@@ -171,7 +176,7 @@ impl NewtonStep<'_, '_> {
                 iterations,
                 residual,
                 worst: worst(model)?,
-                hint: model.stall_hint(residual),
+                hint: model.stall_hint(residual, self.target.tolerance),
             }),
         }
     }
@@ -316,7 +321,7 @@ impl SnesProblem for NewtonStep<'_, '_> {
     }
 
     fn last_residual_converged(&self) -> bool {
-        self.residual_at.is_some() && self.relative_residual() <= self.model.scene.file.solver.newton_tol
+        self.residual_at.is_some() && self.relative_residual() <= self.target.tolerance
     }
 
     fn converged(&mut self, it: u32, _fnorm: f64, linear_iterations: u32) -> Option<bool> {
@@ -341,6 +346,6 @@ impl SnesProblem for NewtonStep<'_, '_> {
         if !rel.is_finite() {
             return Some(false);
         }
-        (it > 0 && rel <= opts.newton_tol).then_some(true)
+        (it > 0 && rel <= self.target.tolerance).then_some(true)
     }
 }

@@ -81,9 +81,23 @@ impl<'a> Problem<'a> {
     }
 
     /// SNES with the scene's solver settings: CG only when every tangent is symmetric (the
-    /// non-associated GP models are not), the canonical LU when the scene asks for it.
+    /// non-associated GP models are not), the static stages' linear solver (a dynamic stage
+    /// sets its own, [`Problem::linear_method`]).
     fn nonlinear_solver(petsc: &Petsc, scene: &Scene, model: &Model) -> Result<Snes, SolveError> {
-        let method = match scene.file.solver.linear_solver {
+        let method = Self::linear_method(scene, model, scene.file.solver.linear_solver);
+        Ok(Snes::new(
+            petsc,
+            scene.file.solver.newton_max_iterations,
+            scene.file.solver.rtol,
+            scene.file.solver.max_iterations,
+            model.symmetric_tangent(),
+            method,
+        )?)
+    }
+
+    /// The linear solver `choice` of the scene, with what it needs of the model.
+    pub(super) fn linear_method(scene: &Scene, model: &Model, choice: LinearSolver) -> LinearMethod {
+        match choice {
             LinearSolver::Iterative => LinearMethod::Krylov,
             LinearSolver::ReducedAmg => LinearMethod::ReducedAmg {
                 structure: model.structure_dofs(),
@@ -95,15 +109,7 @@ impl<'a> Problem<'a> {
             LinearSolver::DistributedLu => LinearMethod::DistributedLu {
                 reuse_factorization: scene.file.solver.reuse_factorization,
             },
-        };
-        Ok(Snes::new(
-            petsc,
-            scene.file.solver.newton_max_iterations,
-            scene.file.solver.rtol,
-            scene.file.solver.max_iterations,
-            model.symmetric_tangent(),
-            method,
-        )?)
+        }
     }
 
     /// The modes of the current stage's start state ([`super::modal`]), if it asked for them.
@@ -232,6 +238,16 @@ impl<'a> Problem<'a> {
         Ok(u)
     }
 
+    /// The Newton tolerance of the current stage: a dynamic stage's own `newton_tol`, else
+    /// the scene's `solver.newton_tol`.
+    fn newton_tol(&self) -> f64 {
+        self.scene.stages[self.stage]
+            .dynamic
+            .as_ref()
+            .and_then(|d| d.newton_tol)
+            .unwrap_or(self.scene.file.solver.newton_tol)
+    }
+
     /// Newton on SNES for the step at load factor `lambda` from the initial guess `guess`,
     /// `predicted` when it is the integrator's prediction.
     fn newton_from(
@@ -252,6 +268,7 @@ impl<'a> Problem<'a> {
             rows: self.constraints.rows(),
             at,
             predicted,
+            tolerance: self.newton_tol(),
         };
         let mut snes = self
             .snes

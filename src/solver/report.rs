@@ -37,6 +37,11 @@ pub struct SolveReport {
     /// Set-ups of the reduced multigrid's multigrid ([`crate::linalg::petsc::reduced_amg`], "Lagged").
     #[serde(default)]
     pub multigrid_builds: u64,
+    /// The most matrix rows this rank's direct solver held at once in this run (its factors'
+    /// or its Schwarz subdomains'; [`crate::linalg::petsc::Snes::held_rows`]); 0 with the
+    /// Krylov solvers.
+    #[serde(default)]
+    pub solver_rows_held: u64,
     /// Wall-clock seconds of each completed stage, for the run summary.
     #[serde(default)]
     pub stage_seconds: Vec<StageSeconds>,

@@ -169,15 +169,20 @@ impl Problem<'_> {
         self.constraints
             .for_stage(&self.model.disc, &self.model.node_active, &self.u_stage_start);
         let dynamic = &self.scene.stages[self.stage].dynamic;
-        let line_search = match dynamic {
-            Some(d) => d.line_search,
-            None => self.scene.file.solver.line_search,
+        let (line_search, choice) = match dynamic {
+            Some(d) => (d.line_search, d.linear_solver),
+            None => (
+                self.scene.file.solver.line_search,
+                self.scene.file.solver.linear_solver,
+            ),
         };
+        let method = Self::linear_method(self.scene, &self.model, choice);
         let snes = self
             .snes
             .as_mut()
             .expect("the nonlinear solver is in place between steps");
         snes.set_time_stepping(dynamic.is_some());
+        snes.set_linear_method(method);
         snes.set_line_search(match line_search {
             LineSearch::Secant => crate::linalg::petsc::LineSearch::Secant,
             LineSearch::FullStepFirst => crate::linalg::petsc::LineSearch::FullStepFirst,

@@ -137,6 +137,12 @@ impl CanonicalLu {
         self.inner.take_factorizations()
     }
 
+    /// Rows of the matrices this rank's solver holds ([`LaggedLu::held_rows`]): the gathered
+    /// Jacobian's, all of them.
+    pub(super) fn held_rows(&self) -> Result<Option<u64>, PetscError> {
+        self.inner.held_rows()
+    }
+
     /// Krylov iterations of the last solve (1 for a direct solve).
     pub(super) fn last_iterations(&self) -> u32 {
         self.inner.last_iterations

@@ -173,6 +173,11 @@ impl LinearSolver {
         Ok(())
     }
 
+    /// Changes the method of the next [`LinearSolver::create`] (after [`LinearSolver::release`]).
+    pub(super) fn set_method(&mut self, method: LinearMethod) {
+        self.method = method;
+    }
+
     /// Drops the shell states, keeping their counts; for after the SNES that refers to them
     /// was destroyed.
     pub(super) fn release(&mut self) {
@@ -205,6 +210,18 @@ impl LinearSolver {
             .map_or(0, |lu| lu.take_factorizations());
         let reduced = self.reduced_amg.as_mut().map_or(0, |amg| amg.take_builds());
         std::mem::take(&mut self.factorizations) + canonical + distributed + reduced
+    }
+}
+
+impl LinearSolver {
+    /// Rows of the matrices this rank's direct solver holds once set up (its factors' or its
+    /// Schwarz subdomains'); `None` for the other solvers and before the first set-up.
+    pub(super) fn held_rows(&self) -> Result<Option<u64>, PetscError> {
+        match (&self.canonical_lu, &self.distributed_lu) {
+            (Some(lu), _) => lu.held_rows(),
+            (None, Some(lu)) => lu.held_rows(),
+            (None, None) => Ok(None),
+        }
     }
 }
 

@@ -38,6 +38,9 @@ pub struct Snes {
     solver: LinearSolver,
     /// The direct solvers are set for the Jacobians of a dynamic stage ([`Snes::set_time_stepping`]).
     time_stepping: bool,
+    /// The linear solver of the next [`Snes::reset`] on, if it changes there
+    /// ([`Snes::set_linear_method`]).
+    next_method: Option<LinearMethod>,
     /// How a Newton correction is scaled ([`Snes::set_line_search`]).
     line_search: LineSearch,
 }
@@ -61,6 +64,7 @@ impl Snes {
             settings: (max_it, rtol, ksp_max_it, symmetric),
             solver: LinearSolver::new(method),
             time_stepping: false,
+            next_method: None,
             line_search: LineSearch::Secant,
         };
         s.configure()?;
@@ -72,6 +76,12 @@ impl Snes {
     /// [`super::lagged_lu`]).
     pub fn set_time_stepping(&mut self, on: bool) {
         self.time_stepping = on;
+    }
+
+    /// The linear solver of the Newton corrections from the next [`Snes::reset`] on (a dynamic
+    /// stage's own, or the static stages').
+    pub fn set_linear_method(&mut self, method: LinearMethod) {
+        self.next_method = Some(method);
     }
 
     /// The line search of the Newton corrections from the next [`Snes::reset`] on
@@ -95,6 +105,9 @@ impl Snes {
         self.raw = raw;
         // the old shell context goes only now that no PC refers to it
         self.solver.release();
+        if let Some(method) = self.next_method.take() {
+            self.solver.set_method(method);
+        }
         self.configure()
     }
 
@@ -126,6 +139,13 @@ impl Snes {
     /// Set-ups of the reduced multigrid's multigrid since the last call (0 with other solvers).
     pub fn take_multigrid_builds(&mut self) -> u64 {
         self.solver.take_multigrid_builds()
+    }
+
+    /// Rows of the matrices this rank's direct solver holds (its factors' or its Schwarz
+    /// subdomains'; the whole system for the canonical solver); `None` for the other solvers
+    /// and before the first solve.
+    pub fn held_rows(&self) -> Result<Option<u64>, PetscError> {
+        self.solver.held_rows()
     }
 
     /// Numeric factorizations of the direct solvers since the last call (0 with the Krylov
