@@ -205,6 +205,7 @@ pub fn write_study(
         let v = e.values().map(|x| format!("{x:.3e}"));
         csv += &format!("{label},{wall:.1},{}\n", v.join(","));
     }
+    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
     let files = [out.join("accuracy_cost.csv"), out.join("accuracy_cost.png")];
     crate::input::write_replacing(&files[0], csv.as_bytes())
         .map_err(|e| format!("{}: {e}", files[0].display()))?;

@@ -330,6 +330,17 @@ impl<'a> Model<'a> {
         self.blocks.iter().all(BlockStates::symmetric_tangent)
     }
 
+    /// Whether every block of the scene is linear elastic (no rockfill, interface or joint),
+    /// so that K_t is the same at every displacement. The same on every rank.
+    pub(super) fn is_linear(&self) -> bool {
+        self.scene.block_materials.iter().all(|m| {
+            matches!(
+                m,
+                crate::material::BlockMaterial::Solid(crate::material::SolidParams::Elastic(_))
+            )
+        })
+    }
+
     /// The rank-local indexing.
     pub fn discretization(&self) -> &Discretization {
         &self.disc

@@ -31,6 +31,9 @@ pub struct Problem<'a> {
     pub(super) integrator: Box<dyn TimeIntegrator>,
     /// Index of the current stage in `scene.stages`.
     pub(super) stage: usize,
+    /// In a dynamic stage of a linear scene: the Δt at which the kept Jacobian was built
+    /// (`None`: not yet built since the last reset of the solver).
+    pub(super) kept_jacobian_dt: Option<f64>,
     /// Per owned node: displacement at the end of the stage that placed it; reported
     /// displacements count from there (the surface of a new lift starts at zero).
     pub(super) node_offset: Vec<[f64; 3]>,
@@ -72,6 +75,7 @@ impl<'a> Problem<'a> {
             snes: Some(snes),
             integrator: Box::new(QuasiStatic::default()),
             stage: 0,
+            kept_jacobian_dt: None,
             node_offset: vec![[0.0; 3]; n_owned_nodes],
             node_was_active: vec![false; n_owned_nodes],
             u_stage_start: Vec::new(),
@@ -193,6 +197,7 @@ impl<'a> Problem<'a> {
     /// prescribed displacements at the integrator's load factor of `t1`) and commits the
     /// states. On failure the problem is back at its committed state. Collective.
     pub fn solve_step(&mut self, t0: f64, t1: f64, report: &mut SolveReport) -> Result<(), SolveError> {
+        self.keep_jacobian_for(t1 - t0)?;
         self.integrator.begin_step(t0, t1);
         let lambda = self.integrator.load_factor(t1);
         let r = self.newton(lambda, self.step_kind().at(t1), report);
@@ -229,6 +234,32 @@ impl<'a> Problem<'a> {
             }
             r => r,
         }
+    }
+
+    /// In a dynamic stage of a linear scene, whose Jacobian K + shift_v·C + shift_a·M changes
+    /// only with Δt: has it built again when `dt` is not the Δt of the kept one (a cut-back).
+    fn keep_jacobian_for(&mut self, dt: f64) -> Result<(), SolveError> {
+        if !self.kept_jacobian() {
+            return Ok(());
+        }
+        match self.kept_jacobian_dt {
+            Some(kept) if (kept - dt).abs() <= 1e-9 * dt.abs() => {}
+            Some(_) => {
+                self.snes
+                    .as_mut()
+                    .expect("the nonlinear solver is in place between steps")
+                    .rebuild_jacobian()?;
+                self.kept_jacobian_dt = Some(dt);
+            }
+            None => self.kept_jacobian_dt = Some(dt),
+        }
+        Ok(())
+    }
+
+    /// Whether the current stage keeps its Jacobian: a dynamic stage of a linear scene
+    /// ([`super::model::Model::is_linear`]).
+    pub(super) fn kept_jacobian(&self) -> bool {
+        self.scene.stages[self.stage].dynamic.is_some() && self.model.is_linear()
     }
 
     /// A copy of the committed displacement (owned DOFs).

@@ -155,6 +155,7 @@ impl Problem<'_> {
     /// Collective.
     pub fn fresh_preconditioner(&mut self) -> Result<(), SolveError> {
         self.integrator.forget();
+        self.kept_jacobian_dt = None;
         self.snes
             .as_mut()
             .expect("the nonlinear solver is in place between steps")
@@ -181,7 +182,10 @@ impl Problem<'_> {
             .snes
             .as_mut()
             .expect("the nonlinear solver is in place between steps");
-        snes.set_time_stepping(dynamic.is_some());
+        // a linear scene's time steps keep one Jacobian: complete factors, made once
+        let kept = dynamic.is_some() && self.model.is_linear();
+        snes.set_time_stepping(dynamic.is_some() && !kept);
+        snes.set_kept_jacobian(kept);
         snes.set_linear_method(method);
         snes.set_line_search(match line_search {
             LineSearch::Secant => crate::linalg::petsc::LineSearch::Secant,

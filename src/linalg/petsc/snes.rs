@@ -41,6 +41,8 @@ pub struct Snes {
     /// The linear solver of the next [`Snes::reset`] on, if it changes there
     /// ([`Snes::set_linear_method`]).
     next_method: Option<LinearMethod>,
+    /// The Jacobian and its preconditioner are built once and kept ([`Snes::set_kept_jacobian`]).
+    kept_jacobian: bool,
     /// How a Newton correction is scaled ([`Snes::set_line_search`]).
     line_search: LineSearch,
 }
@@ -65,6 +67,7 @@ impl Snes {
             solver: LinearSolver::new(method),
             time_stepping: false,
             next_method: None,
+            kept_jacobian: false,
             line_search: LineSearch::Secant,
         };
         s.configure()?;
@@ -82,6 +85,21 @@ impl Snes {
     /// stage's own, or the static stages').
     pub fn set_linear_method(&mut self, method: LinearMethod) {
         self.next_method = Some(method);
+    }
+
+    /// From the next [`Snes::reset`] on (`true`): the Jacobian and its preconditioner are built
+    /// at the first Newton iteration and kept for every later iteration and solve, for a
+    /// problem whose Jacobian does not change (a linear scene's time steps of one Δt), until
+    /// [`Snes::rebuild_jacobian`].
+    pub fn set_kept_jacobian(&mut self, on: bool) {
+        self.kept_jacobian = on;
+    }
+
+    /// With a kept Jacobian: builds it (and its preconditioner) again at the next Newton
+    /// iteration, then keeps that one.
+    pub fn rebuild_jacobian(&mut self) -> Result<(), PetscError> {
+        call!(SNESSetLagJacobian(self.raw, -2))?;
+        call!(SNESSetLagPreconditioner(self.raw, -2))
     }
 
     /// The line search of the Newton corrections from the next [`Snes::reset`] on
@@ -132,6 +150,13 @@ impl Snes {
         let mut ksp: p::KSP = null_mut();
         call!(SNESGetKSP(s.raw, &mut ksp))?;
         s.solver.install(ksp, rtol, ksp_max_it, symmetric)?;
+        if s.kept_jacobian {
+            // -2: built at the next chance, then never again; persisting across solves
+            call!(SNESSetLagJacobian(s.raw, -2))?;
+            call!(SNESSetLagJacobianPersists(s.raw, p::PETSC_TRUE))?;
+            call!(SNESSetLagPreconditioner(s.raw, -2))?;
+            call!(SNESSetLagPreconditionerPersists(s.raw, p::PETSC_TRUE))?;
+        }
         // options (scene and command line) are applied here, so a bad one is an input error
         call!(SNESSetFromOptions(s.raw))
     }
