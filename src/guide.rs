@@ -205,7 +205,10 @@
 //! A dynamic stage has its own `linear_solver` and, if given, its own `newton_tol`; the static
 //! stages' `solver.linear_solver` and `solver.newton_tol` do not reach it. The seed quake
 //! scenes keep their static study's solver for the construction and impoundment and solve the
-//! quake on the default.
+//! quake on the default. In a scene whose blocks are all linear elastic the Jacobian of a time
+//! step does not change: the dynamic stage builds it and factors it completely once (again
+//! only when a cut-back changes Δt), and each step costs one Newton iteration
+//! (`dynamics::a_linear_scenes_quake_builds_and_factors_its_jacobian_once`).
 //!
 //! Each time step's Newton iterations start from the last converged displacement (`predictor:
 //! none`, the default). `predictor: extrapolate` starts them from the committed velocity

@@ -48,6 +48,15 @@
 //!   1 against 2 ranks (`scripts/make_seed_static_figures.sh`, build of 51547bd;
 //!   `scripts/figures/seed_static_compare.txt`): 0 difference in every field of every stage,
 //!   the same Newton and cut-back counts, also with one load step per stage (build of efe2165).
+//! * **Quakes** on the dynamic stages' default distributed solver agree between rank counts to
+//!   the Newton tolerance, not bit for bit (its Schwarz subdomains follow the partition): the
+//!   small GP-interface dam's 0.3 s quake on 1, 2 and 4 ranks, the statics on the canonical LU,
+//!   differs by 6.9e-8 (2 ranks) and 1.1e-7 (4) of the largest displacement
+//!   (`dynamics::a_quake_on_the_distributed_solver_agrees_on_1_2_and_4_ranks`, bound 1e-5), and
+//!   on 8 ranks (oversubscribed) by 8.6e-8 in the displacement and 7.7e-5 in the acceleration
+//!   (`cfrd compare` of that scene run by hand, build of 18ba5c8). With `linear_solver:
+//!   canonical_lu` in the dynamic stage a quake is the same bit for bit on 1 and 2 ranks
+//!   (`dynamics::a_plastic_dam_quake_is_the_same_bit_for_bit_on_1_and_2_ranks`).
 //! * **Not across machines.** PETSc's vector operations run on OpenBLAS, which picks its kernels
 //!   by CPU: `OPENBLAS_CORETYPE=Haswell` against `Prescott` moved the coarse hyperbolic scene's
 //!   first 6 stages by 4.7e-3 relative (`mpirun -x OPENBLAS_CORETYPE -n 2 cfrd run
@@ -408,48 +417,77 @@
 //! ### The seed quake (coarse mesh)
 //!
 //! `mpirun -n 2 cfrd run inputs/scenes/seed_coarse_gp_interface_quake.yaml -o gp` and the same
-//! with `seed_coarse_mohr_coulomb_quake.yaml` (`-o mc`; the 20 s quake at Δt = 0.01 s, Newmark
-//! average acceleration, consistent mass, Rayleigh 2 % at 1 and 5 Hz), then `cfrd overlay
-//! --quake "GP interface=gp" "ideal elasto-plastic=mc" -o seed_quake_interfaces.png`
-//! (`scripts/figures/seed_quake_{gp_interface,mohr_coulomb}_*.png`). Build of 902414d (lagged
-//! complete factors and the secant line search in the quake); today's ILU(0) solver moves the
-//! residual slab table by at most 0.025 MPa and 0.02 cm, the full-step-first line search by
-//! 0.4–1 % ([`crate::performance`], "The seed quake (coarse mesh)"). 1 and 2 ranks give the same
-//! bits (build of 7b67265; `dynamics::a_plastic_dam_quake_is_the_same_bit_for_bit_on_1_and_2_ranks`).
+//! with `seed_coarse_mohr_coulomb_quake.yaml` (`-o mc`): the static study's construction and
+//! impoundment, then the 20 s record at Δt = 0.01 s with HHT-α (α = −0.1), consistent mass,
+//! Rayleigh 2 % at 1 and 5 Hz, Newton to 1e-5, on the dynamic stages' default distributed
+//! solver; `cfrd overlay --quake "GP interface=gp" "ideal elasto-plastic=mc" -o
+//! seed_quake_interfaces.png` (`scripts/figures/seed_quake_{gp_interface,mohr_coulomb}_*.png`,
+//! drawn by the Newmark runs of build 902414d). Build of 18ba5c8: 152 s and 121 s on 2 ranks
+//! (quake stages 123.8 s and 102.2 s), 125 MiB per rank.
 //!
 //! Residual slab stresses (after − before the quake, MPa, tension +) and deflection (cm) at the
 //! central section (Fig. 13), GP / ideal elasto-plastic:
 //!
 //! | elevation | σ_s residual | σ_a residual | σ_a after the quake | deflection residual |
 //! |---|---|---|---|---|
-//! | 2695 m | −4.09 / −4.36 | −1.19 / −1.18 | −4.69 / −4.57 | 1.7 / 1.7 |
-//! | 2723 m | −4.95 / −6.09 | −1.68 / −1.94 | −7.04 / −7.26 | 4.6 / 4.6 |
-//! | 2748 m | −3.19 / −5.37 | −2.25 / −2.73 | −7.42 / −7.83 | 6.5 / 6.5 |
-//! | 2769 m | −2.08 / −4.40 | −3.11 / −4.09 | −8.11 / −9.00 | 8.3 / 8.3 |
-//! | 2786 m | −0.68 / −3.54 | −3.97 / −5.59 | −8.58 / −10.13 | 10.2 / 10.2 |
-//! | 2799 m | −0.04 / −3.67 | −4.94 / −7.08 | −9.20 / −11.33 | 12.2 / 12.2 |
-//! | 2817 m | +0.40 / −2.05 | −5.70 / −9.90 | −8.79 / −13.04 | 15.2 / 15.1 |
-//! | 2840 m | +0.23 / +0.36 | −5.79 / −12.75 | −8.27 / −15.30 | 19.3 / 18.8 |
+//! | 2695 m | −4.00 / −4.33 | −1.19 / −1.17 | −4.69 / −4.56 | 1.7 / 1.7 |
+//! | 2723 m | −4.91 / −6.05 | −1.68 / −1.93 | −7.03 / −7.25 | 4.5 / 4.5 |
+//! | 2748 m | −3.22 / −5.36 | −2.22 / −2.71 | −7.39 / −7.81 | 6.5 / 6.5 |
+//! | 2769 m | −2.09 / −4.36 | −3.06 / −4.05 | −8.07 / −8.96 | 8.2 / 8.2 |
+//! | 2786 m | −0.62 / −3.47 | −3.91 / −5.55 | −8.51 / −10.09 | 10.1 / 10.1 |
+//! | 2799 m | +0.02 / −3.55 | −4.87 / −7.09 | −9.12 / −11.34 | 12.2 / 12.2 |
+//! | 2817 m | +0.35 / −1.69 | −5.63 / −9.98 | −8.72 / −13.12 | 15.2 / 15.0 |
+//! | 2840 m | +0.25 / +0.42 | −5.79 / −12.92 | −8.27 / −15.47 | 19.3 / 18.8 |
 //!
 //! ![residual slab stresses, coarse seed dam, both interface models][quakeif]
 //!
 //! ![section outline before and after the quake, GP interface][quake12]
 //!
+//! **What the integrator and the solver change** (`cfrd accuracy --quake`, relative to the
+//! largest values, against the GP quake of build afbc851: Newmark average acceleration and the
+//! canonical solver): the distributed solver alone moves the residual slab stresses by 6.1e-3
+//! (σ_s) and 5.2e-3 (σ_a) and the crest settlement by 1.2e-3; HHT-α with it by 3.1e-2, 1.9e-2
+//! and 1.5e-2. Against a run at Δt = 0.005 s both integrators at 0.01 s lie about 3 % off in
+//! σ_s ([`crate::performance`], "Time step, mass and integrator against cost"): HHT-α is as
+//! accurate as Newmark in the residual state, and its accelerations are clean.
+//!
+//! **Single-step acceleration spikes: the cause.** The crest acceleration of every time step
+//! against the same history low-passed at 20 Hz (zero-phase Butterworth of order 4,
+//! [`crate::seismic::filter`]; `spike_ratio` in `quake_summary.json`; cross-checked against
+//! SciPy's `sosfiltfilt` to 0.01 m/s²), x / y / z:
+//!
+//! | run | raw peak (m/s²) | low-passed peak | ratio | crest amplification (peak over PGA) |
+//! |---|---|---|---|---|
+//! | GP, Newmark, canonical solver (afbc851) | 10.46 / 14.40 / 10.76 | 9.84 / 6.69 / 10.05 | 1.06 / **2.15** / 1.07 | 3.49 / 4.80 / 5.38 |
+//! | GP, Newmark, distributed solver | 10.08 / 10.90 / 10.89 | 9.85 / 6.58 / 10.12 | 1.02 / **1.66** / 1.08 | 3.36 / 3.63 / 5.45 |
+//! | **GP, HHT-α −0.1 (the scene)** | 10.07 / 7.71 / 10.28 | 9.97 / 6.37 / 9.91 | 1.01 / **1.21** / 1.04 | 3.36 / 2.57 / 5.14 |
+//! | **ideal elasto-plastic, HHT-α −0.1 (the scene)** | 11.18 / 6.52 / 11.05 | 10.02 / 6.12 / 10.22 | 1.11 / 1.06 / 1.08 | 3.73 / 2.17 / 5.52 |
+//!
+//! With Newmark the part of the history above 20 Hz exceeds 2 m/s² at some 30 times in the
+//! axis direction (t = 3.10, 5.86–6.10, 7.33–7.41, 10.51–10.59, 11.86–11.91 s, …), and there
+//! it alternates in sign from one step to the next: a response at the step's Nyquist frequency
+//! (period 2Δt), which average acceleration leaves undamped (spectral radius 1 at ω·Δt → ∞),
+//! set off where the tangent jumps (joints and the GP interface closing, the rockfill switching
+//! between loading and unloading); the time steps cut back are not where it happens (5.32,
+//! 9.36, 10.51, 11.78 s). HHT-α's spectral radius 0.82 at ω·Δt → ∞ removes it: above 2 m/s² at
+//! two steps only (t = 14.82, 14.84 s). The seed quake scenes therefore integrate with
+//! `hht_alpha: -0.1`. The vertical amplification (5.1–5.5) is the coarse mesh's: its crest is
+//! one element row thick.
+//!
 //! * **The GP quake needs the interface's stress-ratio cap** (`stress_ratio_cap: peak`, the
 //!   default, [`crate::material::interface_gp`]): without it the crest row's interface reloads
 //!   past its peak ratio and the quake stops at t = 4.56 s (η = 10.4 against η_p = 0.80);
-//!   without the integrator's flip budget ([`crate::material::gp_integrator`]) at 3.87 s.
+//!   without the integrator's flip budget ([`crate::material::gp_integrator`]) at 3.87 s
+//!   (both with Newmark, build of a0533fd).
 //! * **No interface element above the water line** on this mesh (crest row centroids at
-//!   2840.25 m, water 2840 m, crest 2852 m): I-C and I-D are one element, σ_n 85–94 kPa through
-//!   the quake. No slab–cushion element opens; 44 (GP) and 42 of 107 joint elements do, the
-//!   widest the right perimetric joint (17.7 mm, GP; 41.0 mm, ideal elasto-plastic).
-//! * **Crest** residual displacement +0.116 / +0.100 m downstream, −0.012 / −0.006 m along the
-//!   axis, −0.178 / −0.182 m settlement (0.10 / 0.11 % of H = 171 m); peak crest acceleration
-//!   over PGA (x, y, z, every step, build of a0533fd) 3.4 / 4.7 / 5.3 and 4.1 / 2.6 / 6.1,
-//!   single-step spikes. **F-A** (2816.9 m): σ_a −3.1 MPa before, −8.8 / −13.0 MPa after; along
-//!   the slope the GP run reaches **+2.13 MPa in tension** (t = 13.08 s; ideal elasto-plastic at
-//!   most +0.65 MPa), above C25 concrete's tensile strength (about 1.8 MPa): the seed's
-//!   linear-elastic slab cannot crack, so the transient is reported, not followed.
+//!   2840.25 m, water 2840 m, crest 2852 m): I-C and I-D are one element. No slab–cushion
+//!   element is open after the quake (0 of 88 at the central section, Fig. 17).
+//! * **Crest** residual displacement +0.115 / +0.101 m downstream, −0.012 / −0.006 m along the
+//!   axis, −0.177 / −0.184 m settlement (0.10 / 0.11 % of H = 171 m). **F-A** (2816.9 m): σ_a
+//!   −3.1 MPa before, −8.7 / −13.1 MPa after; along the slope the GP run reaches **+1.96 MPa in
+//!   tension** (t = 13.08 s; ideal elasto-plastic at most +1.45 MPa, t = 5.84 s), above C25
+//!   concrete's tensile strength (about 1.8 MPa): the seed's linear-elastic slab cannot crack,
+//!   so the transient is reported, not followed.
 //!
 //! ### The seed quake (medium mesh)
 //!
@@ -501,6 +539,23 @@
 //!   of H) and +0.106 / −0.003 / −0.190 m: the rockfill sets it, not the interface. **F-A**
 //!   (2814 m): σ_a −3.0 MPa before, −10.5 (GP) and −13.9 MPa after; along the slope up to
 //!   **+3.5 MPa in tension** (GP, t = 9.61 s) and +2.2 MPa: reported, not followed.
+//! * **The committed scene** (build of 18ba5c8: the static study's solver, then HHT-α −0.1 and
+//!   the distributed solver in the quake; [`crate::performance`]) gives the table above within
+//!   0.07 MPa (σ_s, 2818 m and below), 0.07 MPa (σ_a) and 0.1 cm, and a residual crest
+//!   displacement of +0.111 / −0.006 / −0.188 m.
+//! * **HHT-α does not remove the medium GP run's crest spikes.** Raw against 20 Hz low-passed
+//!   peak (`spike_ratio`, x / y / z): 135.3 / 5.6 / 185.2 against 38.4 / 5.4 / 52.5 m/s², ratios
+//!   3.5 / 1.03 / 3.5, amplification over PGA 45 / 1.9 / 93. The largest values come in bursts
+//!   at t = 4.29, 5.85, 9.32, 10.29, 11.13 and 12.11 s, in x and z together. Two of them bracket
+//!   the openings of I-D, the crest's interface element: it opens at 11.15 s and closes at
+//!   11.17 s, and opens at 12.05 s and closes at 12.06 s. The others do not. On the coarse mesh,
+//!   where no interface element lies above the water line, HHT-α brings every ratio under
+//!   1.21. The cause on the medium mesh is therefore not the scheme's undamped Nyquist response
+//!   alone. The node `quake_crest.csv` follows is the slab's top edge at a vertical joint
+//!   (mesh node 10012 at x = 239.2 m, z = 2852.24 m, in `slab_3` and `joint_vertical_3`; on
+//!   the coarse mesh also a slab node). It is the light, stiff slab striking the cushion and
+//!   the joint: the contact's closing and the GP interface's normal stiffness on reloading are
+//!   the remaining suspects, not yet shown. The dam body's crest is not what is measured.
 //! * **Crest accelerations are not usable from the GP run**: 172 / 6.3 / 236 m/s² (x, y, z) at
 //!   the crest node are single-step spikes (at t = 12.11 s the x component goes 23, −172, 78
 //!   m/s² on three steps, 0.05 s after I-D closes again; the one-part run 219 / 6.6 / 295 m/s²).
