@@ -64,8 +64,7 @@ pub const INCOMPLETE_RESTART: i32 = 100;
 /// GMRES's iteration limit with incomplete factors (`-<prefix>dynamic_ksp_max_it` overrides).
 pub const INCOMPLETE_MAX_ITERATIONS: i32 = 300;
 /// Most levels of fill the incomplete factors are raised to when a solve with them fails
-/// (ILU(0), then ILU(1), ILU(2); [`LaggedLu::solve`]). On 4 ranks the small GP-interface dam of
-/// `tests/dynamics.rs` has Schwarz subdomains of some 250 DOFs, on which GMRES with ILU(0)
+/// (ILU(0), then ILU(1), ILU(2)). On 4 ranks the small GP-interface dam of `tests/dynamics.rs` has Schwarz subdomains of some 250 DOFs, on which GMRES with ILU(0)
 /// took 40-140 iterations and broke down at t = 0.13 s whatever the step; with ILU(1) it took
 /// 11.7 on average. On the coarse seed quake on 2 ranks ILU(1) throughout cost 162.5 s against
 /// 123.8 s (15 % fewer GMRES iterations), so fill is added only where a solve needs it.
