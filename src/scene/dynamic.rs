@@ -25,7 +25,7 @@
 //! A dynamic stage solves its Newton corrections with its own `linear_solver`, not the static
 //! stages' `solver.linear_solver`: by default `distributed_lu`, which in a time step is GMRES
 //! preconditioned by additive Schwarz with ILU(0) subdomains on the distributed Jacobian
-//! ([`crate::linalg::petsc::lagged_lu`]): no rank holds the whole matrix, its factors or a
+//! (`cfrd::guide`, "Linear solvers and PETSc options"): no rank holds the whole matrix, its factors or a
 //! whole vector, so memory and work per rank fall with the rank count. `canonical_lu` gathers
 //! the Jacobian onto every rank and gives the same bits at any rank count; `iterative` and
 //! `reduced_amg` are the static solvers of the same names.

@@ -4,7 +4,7 @@
 //! |H(f)|² = 1 / (1 + (tan(πf/f_s) / tan(πf_c/f_s))⁸) (what `scipy.signal.sosfiltfilt` does with
 //! `butter(4, f_c, fs=f_s, output='sos')`). cfrd uses it to tell a resolved peak of a response
 //! history from a single-step spike: the raw peak against the peak of the history low-passed at
-//! 20 Hz (`quake_summary.json`, [`crate::post::quake`]).
+//! 20 Hz (`spike_ratio` in a quake's `quake_summary.json`).
 
 use std::f64::consts::PI;
 
