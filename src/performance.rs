@@ -42,7 +42,7 @@
 //! | coarse static | 3,360 | 14 | canonical LU (PETSc's LU) | 22–25 s | 83–86 MiB |
 //! | medium static | 35,151 | 37 | reduced multigrid | 151.0–175.9 s | 247–251 MiB |
 //! | fine static | 256,461 | 95 | reduced multigrid | 28.9–35.5 min | 1.93–1.94 GiB |
-//! | coarse quake (GP interface), the quake stage | 3,360 | 14 + the quake | canonical LU; Schwarz + ILU(0) in the quake | 123.8 s (152 s the whole run, build of 18ba5c8) | 125 MiB |
+//! | coarse quake (GP interface), the quake stage | 3,360 | 14 + the quake | canonical LU; Schwarz + ILU(0) in the quake | 114.6 s (141 s the whole run, build of 16092e5) | 125 MiB |
 //! | medium quake (GP interface), the committed scene | 35,151 | 37 + the quake | reduced multigrid; Schwarz + ILU(0) in the quake | 37.0 min in all, the quake stage 34.1 min (build of 18ba5c8) | 519 / 306 MiB |
 //!
 //! **Coarse mesh** (PETSc's LU with reused factors, 8 load steps per stage). Build of 51547bd,

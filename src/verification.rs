@@ -422,8 +422,8 @@
 //! Rayleigh 2 % at 1 and 5 Hz, Newton to 1e-5, on the dynamic stages' default distributed
 //! solver; `cfrd overlay --quake "GP interface=gp" "ideal elasto-plastic=mc" -o
 //! seed_quake_interfaces.png` (`scripts/figures/seed_quake_{gp_interface,mohr_coulomb}_*.png`,
-//! drawn by the Newmark runs of build 902414d). Build of 18ba5c8: 152 s and 121 s on 2 ranks
-//! (quake stages 123.8 s and 102.2 s), 125 MiB per rank.
+//! drawn by the Newmark runs of build 902414d). On 2 ranks: GP 141 s (quake stage 114.6 s, build
+//! of 16092e5), ideal elasto-plastic 121 s (102.2 s, build of 18ba5c8), 125 MiB per rank.
 //!
 //! Residual slab stresses (after − before the quake, MPa, tension +) and deflection (cm) at the
 //! central section (Fig. 13), GP / ideal elasto-plastic:
