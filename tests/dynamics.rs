@@ -891,12 +891,12 @@ fn the_default_dynamic_solver_holds_no_global_matrix_on_any_rank() {
     let dir = tempdir();
     let d = dir.path();
     gp_interface_dam_quake(d, 0.05, "", 5);
-    let scene = std::fs::read_to_string(d.join("dam.yaml")).unwrap();
-    let scene = scene
-        .replace("linear_solver: canonical_lu, output_every", "output_every")
-        .replace("linear_solver: canonical_lu", "linear_solver: distributed_lu");
+    let (from, to) = ("linear_solver: canonical_lu, output_every", "output_every");
+    scene_variant(d, "default.yaml", from, to);
+    let (from, to) = ("linear_solver: canonical_lu", "linear_solver: distributed_lu");
+    variant_of(d, "default.yaml", "distributed.yaml", from, to);
+    let scene = std::fs::read_to_string(d.join("distributed.yaml")).unwrap();
     assert!(!scene.contains("canonical_lu"), "{scene}");
-    std::fs::write(d.join("distributed.yaml"), scene).unwrap();
     let runs = [
         ("distributed.yaml", 1, "default1"),
         ("distributed.yaml", 2, "default2"),
@@ -956,8 +956,9 @@ fn a_quake_on_the_distributed_solver_agrees_on_1_2_and_4_ranks() {
 /// column's 100 time steps on the distributed solver take one Newton iteration each and two
 /// factorizations in the whole run (the placing stage's and the quake's), on 1 and 2 ranks,
 /// and agree with the same quake whose Jacobian is built at every Newton iteration (the
-/// canonical solver's run with `-snes_lag_jacobian 1 -snes_lag_preconditioner 1`, which override the kept Jacobian, and
-/// every Jacobian factored) to 1e-10 of the largest displacement.
+/// canonical solver's run with `-snes_lag_jacobian 1 -snes_lag_preconditioner 1`, which
+/// override the kept Jacobian, and every Jacobian factored) to 1e-10 of the largest
+/// displacement.
 #[test]
 fn a_linear_scenes_quake_builds_and_factors_its_jacobian_once() {
     let _turn = mpi_turn();
@@ -968,18 +969,17 @@ fn a_linear_scenes_quake_builds_and_factors_its_jacobian_once() {
         d,
         "{ record: record.csv, duration: 1.0, damping: { ratio: 0.05, frequencies: [1.0, 5.0] }, output_every: 10 }",
     );
-    let scene = std::fs::read_to_string(d.join("column.yaml")).unwrap();
-    let kept = scene.replace(
-        "solver: { petsc_options: '-ksp_type preonly -pc_type lu' }",
+    let from = "solver: { petsc_options: '-ksp_type preonly -pc_type lu' }";
+    variant_of(
+        d,
+        "column.yaml",
+        "kept.yaml",
+        from,
         "solver: { linear_solver: distributed_lu }",
     );
-    assert_ne!(kept, scene);
-    std::fs::write(d.join("kept.yaml"), kept.clone()).unwrap();
-    let rebuilt = kept.replace(
-        "distributed_lu }",
-        "canonical_lu, reuse_factorization: false, petsc_options: '-snes_lag_jacobian 1 -snes_lag_preconditioner 1' }",
-    );
-    std::fs::write(d.join("rebuilt.yaml"), rebuilt).unwrap();
+    let every = "canonical_lu, reuse_factorization: false, \
+                 petsc_options: '-snes_lag_jacobian 1 -snes_lag_preconditioner 1' }";
+    variant_of(d, "kept.yaml", "rebuilt.yaml", "distributed_lu }", every);
     for (np, yaml, out) in [(1, "kept", "k1"), (2, "kept", "k2"), (1, "rebuilt", "r1")] {
         let o = cfrd_mpi(np, d, &["run", &format!("{yaml}.yaml"), "-o", out, "-q"]);
         assert!(o.status.success(), "{out}: {}", text(&o));

@@ -178,12 +178,12 @@ impl Problem<'_> {
             ),
         };
         let method = Self::linear_method(self.scene, &self.model, choice);
+        // a linear scene's time steps keep one Jacobian: complete factors, made once
+        let kept = self.kept_jacobian();
         let snes = self
             .snes
             .as_mut()
             .expect("the nonlinear solver is in place between steps");
-        // a linear scene's time steps keep one Jacobian: complete factors, made once
-        let kept = dynamic.is_some() && self.model.is_linear();
         snes.set_time_stepping(dynamic.is_some() && !kept);
         snes.set_kept_jacobian(kept);
         snes.set_linear_method(method);
