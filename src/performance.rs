@@ -638,7 +638,17 @@
 //! 20,706 of the 35,151 rows (`solver_rows_held_per_rank`). Its residual slab table lies within
 //! 0.07 MPa and 0.1 cm of the table in [`crate::verification`] ("The seed quake (medium
 //! mesh)"). The two runs are many builds apart and not side by side, so no speed ratio is
-//! claimed from them.
+//! claimed from them. The same command without step checkpoints on the build of this
+//! section's commit (the stiffness boxed, no tangent per point in the slab, the loads kept;
+//! nothing else in a GP scene changes): 37 min 27 s in all, the quake stage 2,067.1 s (6,239
+//! Newton iterations, 2 cut-backs), 515 MiB peak per rank: no quicker.
+//!
+//! **Where a step of the medium GP quake goes** (`perf record` of one rank for 60 s in the
+//! quake, that run): the linear solves half (GMRES's products with the Jacobian 18.5 %, the
+//! ILU(0) substitutions 12 %, the preconditioner's set-ups 15.5 %, of which extracting the
+//! overlapping subdomain matrices 7.9 % and factoring them 7.6 %), the GP rockfill's updates a
+//! quarter (4.4 residual evaluations per step), the element stiffness 5 % and the slab's
+//! incompatible modes 2.8 %. 23.7 GMRES iterations per solve.
 //!
 //! **The quake's solver choices, side by side** (windows of the medium GP quake from a step
 //! checkpoint, 2 ranks, one run after the other):
@@ -661,27 +671,36 @@
 //! consistent mass, Rayleigh 5 % at 1 and 5 Hz) on one rank, then the same mesh, record and
 //! damping in OpenSees 3.7.1 (openseespy: `stdBrick`, `ElasticIsotropic`, `rayleigh` on the
 //! initial stiffness, `UniformExcitation`, `Newmark 0.5 0.25`, `Linear -factorOnce`, `Mumps`),
-//! alternating, three pairs (build of a88bf61):
+//! alternating, three pairs (the build of this section's commit):
 //!
 //! | pair | cfrd, ms per step (quake stage) | OpenSees, ms per step (analyze loop) | OpenSees / cfrd |
 //! |---|---|---|---|
-//! | 1 | 27.25 | 106.95 | 3.92 |
-//! | 2 | 27.00 | 101.92 | 3.78 |
-//! | 3 | 25.41 | 110.17 | 4.34 |
+//! | 1 | 8.70 | 105.45 | 12.12 |
+//! | 2 | 9.64 | 119.73 | 12.42 |
+//! | 3 | 9.06 | 108.06 | 11.93 |
 //!
-//! **cfrd takes 3.92 (3.78–4.34) times fewer seconds per step than OpenSees** here.
+//! **cfrd takes 12.1 (11.9–12.4) times fewer seconds per step than OpenSees** here.
 //!
-//! The two crest histories agree to 6.5e-12 of the largest displacement: the same element, mass,
-//! damping and scheme. The dynamic stage of a scene whose blocks are all linear elastic builds
-//! its Jacobian K + shift_v·C + shift_a·M and factors it once (complete factors; again only if
-//! a cut-back changes Δt): two factorizations and one Newton iteration per step in the run
-//! (`dynamics::a_linear_scenes_quake_builds_and_factors_its_jacobian_once`). What is left per
-//! step, in a run profiled alone (30.0 s quake stage): two element loops for f_int (6.5 s) and
-//! the solve phase (21 s), in which MUMPS's substitution with one right-hand side takes about
-//! 45 % of all samples (`perf record`; OpenBLAS's `dgemm_incopy` packing alone 31 %); PETSc's
-//! own LU on the canonical solver gives 23.3 ms per step, SuperLU_DIST 26.6 ms. Ten times
-//! fewer seconds per step than OpenSees, the project's target for linear scenes, is not
-//! reached.
+//! The two crest histories agree to 6.6e-12 of the largest displacement: the same element, mass,
+//! damping and scheme. What a step of a linear scene's dynamic stage does:
+//!
+//! - **One factorization.** The Jacobian K + shift_v·C + shift_a·M of a scene whose blocks are
+//!   all linear elastic is built and completely factored once (again only if a cut-back
+//!   changes Δt): two factorizations and one Newton iteration per step in the run
+//!   (`dynamics::a_linear_scenes_quake_builds_and_factors_its_jacobian_once`). The factors
+//!   are applied alone, with no Krylov iteration around them; on one rank they are PETSc's
+//!   own LU of the matrix in 3×3 node blocks (MUMPS on several ranks).
+//! - **One element loop.** A step starts at the committed displacement, where the internal
+//!   forces are those of the evaluation the last step converged at; a linear scene takes them
+//!   from there, so each step integrates its elements once, at its converged point, for its
+//!   two residuals (the same test; `element_loops` in `summary.json`).
+//! - **The loads once per stage.** The external and placement forces of a stage at one load
+//!   factor are assembled once and kept (every step of a dynamic stage has factor 1).
+//!
+//! What a step costs now (one rank, `-log_view` and `perf record` of one run): the
+//! substitution 2.8–2.9 ms (4.6–5.7 ms with PETSc's LU of the scalar matrix, 7.1 ms with
+//! MUMPS's, each measured with `-log_view` on this scene), the products with M and K₀ of the two residuals (summed in the
+//! mesh's DOF order, `CanonicalProduct`) about 2 ms, the element loop about 1.7–2 ms.
 //!
 //! ## Tried and rejected
 //!
@@ -690,6 +709,8 @@
 //!
 //! | what | measured | why not |
 //! |---|---|---|
+//! | Cholesky for a linear scene's kept factors (the linear embankment, one rank, `-log_view`) | substitution 9.3 ms (MUMPS) and 5.2 ms (PETSc) against 4.6–5.7 ms with PETSc's LU | no quicker than LU, and slower than LU of the 3×3-block matrix (2.8 ms) |
+//! | four rows of `CanonicalProduct` summed side by side (each row's order kept) | 0.37 against 0.41 ms per product in a stand-alone loop; the linear embankment's quake stage not quicker | not worth the code |
 //! | static load steps that double after two converged steps, up to 4 × (build ad29fd6) | medium 358.7 s against 290.5 s, 8 cut-backs | longer increments cost GP substeps and line-search evaluations |
 //! | step growth also after a two-iteration step (G = 2) | fine fill_001–fill_020: 159.8 s against 140.9 s | longer increments cost GP substeps |
 //! | quadratic extrapolation of a step's start | medium stages 1–24: 686 Newton iterations against 659 | the start residual is not the path's curvature |

@@ -456,12 +456,23 @@
 //! [`crate::seismic::filter`]; `spike_ratio` in `quake_summary.json`; cross-checked against
 //! SciPy's `sosfiltfilt` to 0.01 m/s²), x / y / z:
 //!
-//! | run | raw peak (m/s²) | low-passed peak | ratio | crest amplification (peak over PGA) |
-//! |---|---|---|---|---|
-//! | GP, Newmark, canonical solver (afbc851) | 10.46 / 14.40 / 10.76 | 9.84 / 6.69 / 10.05 | 1.06 / **2.15** / 1.07 | 3.49 / 4.80 / 5.38 |
-//! | GP, Newmark, distributed solver | 10.08 / 10.90 / 10.89 | 9.85 / 6.58 / 10.12 | 1.02 / **1.66** / 1.08 | 3.36 / 3.63 / 5.45 |
-//! | **GP, HHT-α −0.1 (the scene)** | 10.07 / 7.71 / 10.28 | 9.97 / 6.37 / 9.91 | 1.01 / **1.21** / 1.04 | 3.36 / 2.57 / 5.14 |
-//! | **ideal elasto-plastic, HHT-α −0.1 (the scene)** | 11.18 / 6.52 / 11.05 | 10.02 / 6.12 / 10.22 | 1.11 / 1.06 / 1.08 | 3.73 / 2.17 / 5.52 |
+//! | run | node | raw peak (m/s²) | low-passed peak | ratio | crest amplification (peak over PGA) |
+//! |---|---|---|---|---|---|
+//! | GP, Newmark, canonical solver (afbc851) | slab edge | 10.46 / 14.40 / 10.76 | 9.84 / 6.69 / 10.05 | 1.06 / **2.15** / 1.07 | 3.49 / 4.80 / 5.38 |
+//! | GP, Newmark, distributed solver | slab edge | 10.08 / 10.90 / 10.89 | 9.85 / 6.58 / 10.12 | 1.02 / **1.66** / 1.08 | 3.36 / 3.63 / 5.45 |
+//! | GP, HHT-α −0.1 (the scene) | slab edge | 10.07 / 7.71 / 10.28 | 9.97 / 6.37 / 9.91 | 1.01 / 1.21 / 1.04 | 3.36 / 2.57 / 5.14 |
+//! | ideal elasto-plastic, HHT-α −0.1 (the scene) | slab edge | 11.18 / 6.52 / 11.05 | 10.02 / 6.12 / 10.22 | 1.11 / 1.06 / 1.08 | 3.73 / 2.17 / 5.52 |
+//! | **GP, HHT-α −0.1 (the scene)** | **rockfill crest** | 17.43 / 11.19 / 9.00 | 17.33 / 11.16 / 8.76 | 1.006 / 1.002 / 1.027 | 5.81 / 3.73 / 4.50 |
+//! | **ideal elasto-plastic, HHT-α −0.1 (the scene)** | **rockfill crest** | 17.11 / 11.71 / 9.92 | 16.94 / 11.65 / 9.80 | 1.010 / 1.005 / 1.012 | 5.70 / 3.90 / 4.96 |
+//!
+//! "Slab edge" is mesh node 827 (x = 239.2 m, z = 2852.24 m), the face slab's top edge, which
+//! stands above the fill and which `quake_crest.csv` followed until this build; "rockfill
+//! crest" is node 608, the centre of the rockfill crest on the axis middle, which it follows
+//! now ([`crate::post::quake::crest_node`]). The rows of the rockfill crest are the committed
+//! scenes run by `mpirun -n 2 cfrd run inputs/scenes/seed_coarse_{gp_interface,mohr_coulomb}_quake.yaml -o OUT`
+//! (2 min 30 s and 2 min 11 s); the other rows are earlier builds' runs of the slab edge.
+//! The rockfill crest's horizontal amplification along the stream, 5.7–5.8, is above what
+//! well-compacted CFRDs show (1.5–4); on this mesh the crest is one element row thick.
 //!
 //! With Newmark the part of the history above 20 Hz exceeds 2 m/s² at some 30 times in the
 //! axis direction (t = 3.10, 5.86–6.10, 7.33–7.41, 10.51–10.59, 11.86–11.91 s, …), and there
@@ -471,8 +482,8 @@
 //! between loading and unloading); the time steps cut back are not where it happens (5.32,
 //! 9.36, 10.51, 11.78 s). HHT-α's spectral radius 0.82 at ω·Δt → ∞ removes it: above 2 m/s² at
 //! two steps only (t = 14.82, 14.84 s). The seed quake scenes therefore integrate with
-//! `hht_alpha: -0.1`. The vertical amplification (5.1–5.5) is the coarse mesh's: its crest is
-//! one element row thick.
+//! `hht_alpha: -0.1`. The slab edge's vertical amplification (5.1–5.5) is the coarse mesh's:
+//! its crest is one element row thick.
 //!
 //! * **The GP quake needs the interface's stress-ratio cap** (`stress_ratio_cap: peak`, the
 //!   default, [`crate::material::interface_gp`]): without it the crest row's interface reloads
@@ -543,19 +554,25 @@
 //!   the distributed solver in the quake; [`crate::performance`]) gives the table above within
 //!   0.07 MPa (σ_s, 2818 m and below), 0.07 MPa (σ_a) and 0.1 cm, and a residual crest
 //!   displacement of +0.111 / −0.006 / −0.188 m.
-//! * **HHT-α does not remove the medium GP run's crest spikes.** Raw against 20 Hz low-passed
-//!   peak (`spike_ratio`, x / y / z): 135.3 / 5.6 / 185.2 against 38.4 / 5.4 / 52.5 m/s², ratios
-//!   3.5 / 1.03 / 3.5, amplification over PGA 45 / 1.9 / 93. The largest values come in bursts
-//!   at t = 4.29, 5.85, 9.32, 10.29, 11.13 and 12.11 s, in x and z together. Two of them bracket
-//!   the openings of I-D, the crest's interface element: it opens at 11.15 s and closes at
-//!   11.17 s, and opens at 12.05 s and closes at 12.06 s. The others do not. On the coarse mesh,
-//!   where no interface element lies above the water line, HHT-α brings every ratio under
-//!   1.21. The cause on the medium mesh is therefore not the scheme's undamped Nyquist response
-//!   alone. The node `quake_crest.csv` follows is the slab's top edge at a vertical joint
-//!   (mesh node 10012 at x = 239.2 m, z = 2852.24 m, in `slab_3` and `joint_vertical_3`; on
-//!   the coarse mesh also a slab node). It is the light, stiff slab striking the cushion and
-//!   the joint: the contact's closing and the GP interface's normal stiffness on reloading are
-//!   the remaining suspects, not yet shown. The dam body's crest is not what is measured.
+//! * **At the slab's top edge HHT-α does not remove the medium GP run's spikes; at the
+//!   rockfill crest they are smaller but not gone.** Raw against 20 Hz low-passed peak
+//!   (`spike_ratio`, x / y / z) at the node `quake_crest.csv` followed until this build, the
+//!   slab's top edge at a vertical joint (mesh node 10012, x = 239.2 m, z = 2852.24 m, in
+//!   `slab_3` and `joint_vertical_3`), in the committed scene's run of build 18ba5c8: 135.3 /
+//!   5.6 / 185.2 against 38.4 / 5.4 / 52.5 m/s², ratios 3.5 / 1.03 / 3.5. At the rockfill
+//!   crest's centre (node 8384, [`crate::post::quake::crest_node`]), the committed scene run by
+//!   `/usr/bin/time -v mpirun -n 2 cfrd run inputs/scenes/seed_medium_gp_interface_quake.yaml
+//!   -o OUT -q` (37 min 27 s, 2 cut-backs, 515 MiB peak per rank): 17.72 / 13.88 / 14.95
+//!   against 14.89 / 13.89 / 8.83 m/s², **ratios 1.19 / 1.00 / 1.69**, amplification over PGA
+//!   5.9 / 4.6 / 7.5. What remains above 20 Hz comes in the same bursts, at t = 9.35–9.36,
+//!   11.12–11.16 and 12.11–12.14 s (and 4.71 s), alternating in sign from one step to the
+//!   next (a_z at 12.11–12.14 s: −5.7, +8.1, −6.8, +5.3 m/s² above the low-passed history):
+//!   the times at which I-D, the crest's slab–cushion interface element, opens and closes
+//!   again (9.36–9.39, 11.15–11.17, 12.05–12.06 s). The closing contact sets off a response at
+//!   the step's Nyquist frequency, which HHT-α −0.1 damps by a factor of only 0.82 per step;
+//!   a stronger α or a change in the contact's treatment is the next thing to measure. The
+//!   horizontal amplification along the stream, 5.9, is above the 1.5–4 of well-compacted
+//!   CFRDs.
 //! * **Crest accelerations are not usable from the GP run**: 172 / 6.3 / 236 m/s² (x, y, z) at
 //!   the crest node are single-step spikes (at t = 12.11 s the x component goes 23, −172, 78
 //!   m/s² on three steps, 0.05 s after I-D closes again; the one-part run 219 / 6.6 / 295 m/s²).

@@ -958,7 +958,8 @@ fn a_quake_on_the_distributed_solver_agrees_on_1_2_and_4_ranks() {
 /// and agree with the same quake whose Jacobian is built at every Newton iteration (the
 /// canonical solver's run with `-snes_lag_jacobian 1 -snes_lag_preconditioner 1`, which
 /// override the kept Jacobian, and every Jacobian factored) to 1e-10 of the largest
-/// displacement.
+/// displacement. Its steps start from the internal forces kept at the committed state, so
+/// each integrates the elements once (at its converged point) for its two residuals.
 #[test]
 fn a_linear_scenes_quake_builds_and_factors_its_jacobian_once() {
     let _turn = mpi_turn();
@@ -992,6 +993,21 @@ fn a_linear_scenes_quake_builds_and_factors_its_jacobian_once() {
         println!("{out}: {factorizations} factorizations, {newton} Newton iterations in {steps} steps");
         assert_eq!(factorizations, 2, "{out}");
         assert_eq!(newton, steps, "{out}: one Newton iteration per step");
+        let evaluations = summary_count(&o, "residual_evaluations");
+        let loops = summary_count(&o, "element_loops");
+        println!("{out}: {evaluations} residual evaluations, {loops} element loops");
+        // the placing stage's one step, then 100 time steps of two residuals each (the start,
+        // from the kept forces, and the converged point) and one element loop; the results
+        // written every 10 steps take the kept forces too. Once more: the two Jacobians and
+        // the quake's first start (a stage begins without kept forces)
+        assert!(
+            evaluations >= 2 * (steps - 1),
+            "{out}: two residuals per time step"
+        );
+        assert!(
+            loops <= steps + 3,
+            "{out}: one element loop per step (and the Jacobians): {loops}"
+        );
     }
     let r1 = summary_count(&d.join("r1"), "factorizations");
     assert!(r1 > 100, "the rebuilt run factors every Jacobian: {r1}");
@@ -999,4 +1015,40 @@ fn a_linear_scenes_quake_builds_and_factors_its_jacobian_once() {
     let (_, every_step, table) = compare_displacements(d, "r1/results.h5", "k1/results.h5");
     println!("kept against rebuilt Jacobian: {every_step:.2e}");
     assert!(every_step < 1e-10, "{table}");
+}
+
+/// The crest history of the committed linear embankment (its 8 m crest from x = 60 to 68 m,
+/// its axis from y = 0 to 120 m) follows the node at the centre of its crest, (64, 60, 40) m,
+/// not one next to it: the tie between the crest nodes nearest the axis middle is broken
+/// across the stream.
+#[test]
+fn the_crest_history_follows_the_centre_of_a_symmetric_embankments_crest() {
+    let _turn = mpi_turn();
+    let dir = tempdir();
+    let d = dir.path();
+    let inputs = Path::new(env!("CARGO_MANIFEST_DIR")).join("inputs");
+    let scene = std::fs::read_to_string(inputs.join("scenes/elastic_embankment_quake.yaml")).unwrap();
+    let record = inputs.join("accel/seed_quake.csv");
+    let scene = scene
+        .replace("../accel/seed_quake.csv", &record.display().to_string())
+        .replace("duration: 10.0", "duration: 0.03");
+    std::fs::write(d.join("embankment.yaml"), scene).unwrap();
+    let o = cfrd_mpi(1, d, &["run", "embankment.yaml", "-o", "out", "-q"]);
+    assert!(o.status.success(), "{}", text(&o));
+    let summary = std::fs::read_to_string(d.join("out/quake_summary.json")).unwrap();
+    let summary: serde_json::Value = serde_json::from_str(&summary).unwrap();
+    let crest = summary["crest_node_id"].as_i64().expect("crest_node_id");
+    let h5 = d.join("out/results.h5");
+    let (coords, ids) = (
+        read_f64(&h5, "/mesh/coordinates"),
+        common::read_i64(&h5, "/mesh/node_ids"),
+    );
+    let n = ids
+        .iter()
+        .position(|&i| i == crest)
+        .expect("the crest node in the mesh");
+    let at = &coords[3 * n..3 * n + 3];
+    println!("crest node {crest} at {at:?}");
+    let centre = [64.0, 60.0, 40.0];
+    assert!(at.iter().zip(centre).all(|(a, c)| (a - c).abs() < 1e-9), "{at:?}");
 }

@@ -131,7 +131,84 @@ fn a_short_quake_writes_the_seed_dynamic_figures() {
     let slab_rows = check_residual_slab(&out);
     let probes = check_probes(&out, &slab_rows);
     check_histories(&out, &probes);
+    check_crest(&out);
     check_parts(d, &out);
+}
+
+/// `quake_crest.csv` follows the centre of the dam body's crest: a node of the fill (on no
+/// slab element), at the fill's highest elevation, nearest the middle of its crest across the
+/// stream; not the slab's top edge, which stands higher.
+fn check_crest(out: &Path) {
+    let h5 = out.join("results.h5");
+    let summary = std::fs::read_to_string(out.join("quake_summary.json")).unwrap();
+    let summary: serde_json::Value = serde_json::from_str(&summary).unwrap();
+    let crest_id = summary["crest_node_id"].as_i64().expect("crest_node_id");
+    let (coords, ids) = (
+        read_f64(&h5, "/mesh/coordinates"),
+        read_i64(&h5, "/mesh/node_ids"),
+    );
+    let (topology, blocks) = (
+        read_i64(&h5, "/mesh/topology"),
+        read_i64(&h5, "/mesh/element_block"),
+    );
+    let names = hdf5::File::open(&h5)
+        .and_then(|f| f.group("mesh"))
+        .and_then(|g| g.attr("block_names"))
+        .and_then(|a| a.read_scalar::<hdf5::types::VarLenUnicode>())
+        .expect("block names")
+        .to_string();
+    let names: Vec<&str> = names.lines().collect();
+    let mut on_slab = vec![false; ids.len()];
+    let mut on_fill = vec![false; ids.len()];
+    for (e, &b) in blocks.iter().enumerate() {
+        let name = names[b as usize];
+        for &n in &topology[8 * e..8 * e + 8] {
+            on_slab[n as usize] |= name.starts_with("slab");
+            on_fill[n as usize] |= name.starts_with("fill");
+        }
+    }
+    let crest = ids
+        .iter()
+        .position(|&i| i == crest_id)
+        .expect("the crest node in the mesh");
+    let z = |n: usize| coords[3 * n + 2];
+    let fill_top = (0..ids.len())
+        .filter(|&n| on_fill[n])
+        .map(z)
+        .fold(f64::MIN, f64::max);
+    let slab_top = (0..ids.len())
+        .filter(|&n| on_slab[n])
+        .map(z)
+        .fold(f64::MIN, f64::max);
+    println!(
+        "crest node {crest_id} at {:?}; fill top {fill_top}, slab top {slab_top}",
+        &coords[3 * crest..3 * crest + 3]
+    );
+    assert!(
+        on_fill[crest] && !on_slab[crest],
+        "the crest node {crest_id} is a fill node"
+    );
+    assert!(
+        (z(crest) - fill_top).abs() < 1e-6,
+        "at the fill's top: {} against {fill_top}",
+        z(crest)
+    );
+    assert!(
+        slab_top > fill_top,
+        "the slab's edge stands above the fill on this mesh"
+    );
+    let top_x: Vec<f64> = (0..ids.len())
+        .filter(|&n| on_fill[n] && (z(n) - fill_top).abs() < 1e-6)
+        .map(|n| coords[3 * n])
+        .collect();
+    let (lo, hi) = top_x
+        .iter()
+        .fold((f64::MAX, f64::MIN), |(a, b), &x| (a.min(x), b.max(x)));
+    let off = (coords[3 * crest] - 0.5 * (lo + hi)).abs();
+    assert!(
+        top_x.iter().all(|&x| (x - 0.5 * (lo + hi)).abs() >= off),
+        "the crest centre's node"
+    );
 }
 
 /// The same run in two parts, stopped after the impoundment and restarted into the quake: the

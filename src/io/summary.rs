@@ -203,6 +203,10 @@ pub struct RunSummary {
     /// step starts and line-search trial points.
     #[serde(default)]
     pub residual_evaluations: u64,
+    /// Element loops (integrations of every placed element): a linear scene's time steps
+    /// start from the forces kept at the committed state and integrate once per step.
+    #[serde(default)]
+    pub element_loops: u64,
     /// Number of load or time steps completed.
     pub steps: u64,
     /// Step cut-backs (failed steps retried with a smaller increment).
@@ -409,6 +413,7 @@ mod tests {
             ksp_iterations: 40,
             newton_iterations: 6,
             residual_evaluations: 9,
+            element_loops: 8,
             element_seconds_per_rank: vec![0.5, 0.25],
             solver_rows_held_per_rank: vec![120, 96],
             steps: 3,

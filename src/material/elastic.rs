@@ -88,6 +88,7 @@ pub fn bulk_shear_stiffness(k: f64, g: f64) -> Matrix6 {
 
 impl SolidModel for LinearElastic {
     type State = ElasticState;
+    const CONSTANT_TANGENT: bool = true;
 
     fn elastic_tangent(&self, _state: &ElasticState) -> Tangent6 {
         self.d

@@ -69,6 +69,10 @@ pub trait SolidModel: Send + Sync {
     /// Integration-point state (stress and internal variables).
     type State: Clone + PartialEq + core::fmt::Debug + Serialize + DeserializeOwned + Send + Sync;
 
+    /// Whether the tangent is the same at every state and increment, [`SolidModel::elastic_tangent`]
+    /// (linear elasticity): the assembly then keeps no tangent per point.
+    const CONSTANT_TANGENT: bool = false;
+
     /// Whether the tangent is symmetric (false for the non-associated GP model).
     fn symmetric_tangent(&self) -> bool;
 

@@ -13,7 +13,7 @@ use std::path::{Path, PathBuf};
 /// The crest's history over the first dynamic stage of a run.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct CrestHistory {
-    /// Index of the crest node (the highest node nearest the middle of the dam axis).
+    /// Index of the crest node ([`crest_node`]).
     pub node: usize,
     /// Time in the stage (s) of every written step.
     pub t: Vec<f64>,
@@ -66,17 +66,41 @@ fn low_passed_peaks(h: &CrestHistory, dt: f64) -> Option<[f64; 3]> {
     Some(peaks)
 }
 
-/// The highest node nearest the middle of the dam axis (then of the stream direction).
+/// The crest node: the highest node of the dam body (the solid elements outside the face slab,
+/// [`crate::post::profiles::body_nodes`]; every node when there are none) nearest the middle
+/// of the dam axis (y), and of those the one nearest the middle of the crest across the stream
+/// (x), the lowest index of a tie. On a CFRD it is the rockfill crest's centre, not the slab's
+/// top edge, which stands higher than the fill and where slab, joints and the slab–cushion
+/// interface meet.
 pub fn crest_node(scene: &Scene) -> usize {
-    let c = &scene.mesh.coords;
-    let top = c.iter().map(|x| x[2]).fold(f64::MIN, f64::max);
-    let (y0, y1) = c
+    let (mesh, c) = (&scene.mesh, &scene.mesh.coords);
+    let spec = scene.file.output.profiles.clone().unwrap_or_default();
+    let body = crate::post::profiles::body_nodes(mesh, &spec);
+    let nodes: Vec<usize> = match body.iter().any(|&b| b) {
+        true => (0..c.len()).filter(|&i| body[i]).collect(),
+        false => (0..c.len()).collect(),
+    };
+    let top = nodes.iter().map(|&i| c[i][2]).fold(f64::MIN, f64::max);
+    let highest: Vec<usize> = nodes
         .iter()
-        .fold((f64::MAX, f64::MIN), |(a, b), x| (a.min(x[1]), b.max(x[1])));
-    let mid = 0.5 * (y0 + y1);
-    (0..c.len())
+        .copied()
         .filter(|&i| c[i][2] >= top - 1e-6 * top.abs().max(1.0))
-        .min_by(|&a, &b| (c[a][1] - mid).abs().total_cmp(&(c[b][1] - mid).abs()))
+        .collect();
+    let middle = |axis: usize, of: &[usize]| {
+        let (lo, hi) = of.iter().fold((f64::MAX, f64::MIN), |(a, b), &i| {
+            (a.min(c[i][axis]), b.max(c[i][axis]))
+        });
+        0.5 * (lo + hi)
+    };
+    let (mid_y, mid_x) = (middle(1, &nodes), middle(0, &highest));
+    let off = |i: usize| ((c[i][1] - mid_y).abs(), (c[i][0] - mid_x).abs());
+    highest
+        .iter()
+        .copied()
+        .min_by(|&a, &b| {
+            let ((ya, xa), (yb, xb)) = (off(a), off(b));
+            ya.total_cmp(&yb).then(xa.total_cmp(&xb)).then(a.cmp(&b))
+        })
         .unwrap_or(0)
 }
 

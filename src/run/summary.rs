@@ -61,6 +61,7 @@ impl SummaryWriter {
         summary.ksp_iterations = report.ksp_iterations.iter().map(|&k| k as u64).sum();
         summary.newton_iterations = report.newton_iterations as u64;
         summary.residual_evaluations = report.residual_evaluations;
+        summary.element_loops = report.element_loops;
         summary.steps = report.steps as u64;
         summary.cutbacks = report.cutbacks as u64;
         summary.predictions_dropped = report.predictions_dropped as u64;

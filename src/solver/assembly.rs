@@ -25,6 +25,8 @@ impl Model<'_> {
         want_k: bool,
         trial_is_current: bool,
     ) -> Result<(), SolveError> {
+        // the trial states move to the current u
+        self.f_int_committed = None;
         let u_loc: Vec<f64> = self.local_u()?;
         let u0_loc: Vec<f64> = self
             .gather_committed
@@ -117,7 +119,7 @@ impl ElementLoop<'_> {
     }
 
     /// f_e and (with `want_k`) K_e of the `i`-th element of this rank at the increment.
-    fn element(&mut self, i: usize, want_k: bool) -> Result<(Vector24, Option<Matrix24>), SolveError> {
+    fn element(&mut self, i: usize, want_k: bool) -> Result<(Vector24, Option<Box<Matrix24>>), SolveError> {
         let mesh = &self.scene.mesh;
         let (b, be) = self.elem_block[i];
         let loc = &self.disc.element_local[i];

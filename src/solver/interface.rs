@@ -59,8 +59,8 @@ macro_rules! with_law {
 pub struct InterfaceElementResponse {
     /// Internal force f_int (N), spec (E7).
     pub f_int: Vector24,
-    /// Tangent stiffness (N/m), spec (E7), if asked for.
-    pub k: Option<Matrix24>,
+    /// Tangent stiffness (N/m), spec (E7), if asked for (boxed, as for the solids).
+    pub k: Option<Box<Matrix24>>,
 }
 
 /// Per-element output of the committed states: means over the 4 points, and counts.
@@ -173,7 +173,7 @@ fn evaluate_element<M: InterfaceModel>(
     }
     Ok(InterfaceElementResponse {
         f_int: geo.internal_force(&tractions),
-        k: want_k.then(|| geo.stiffness(&trial_tangents(ls, e))),
+        k: want_k.then(|| Box::new(geo.stiffness(&trial_tangents(ls, e)))),
     })
 }
 
@@ -190,7 +190,7 @@ fn trial_response<M: InterfaceModel>(
     let tractions = std::array::from_fn(|q| M::traction(&ls.store.trial[e * INTERFACE_POINTS + q]));
     InterfaceElementResponse {
         f_int: geo.internal_force(&tractions),
-        k: Some(geo.stiffness(&trial_tangents(ls, e))),
+        k: Some(Box::new(geo.stiffness(&trial_tangents(ls, e)))),
     }
 }
 

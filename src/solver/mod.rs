@@ -25,6 +25,8 @@ pub mod state_codec;
 #[cfg(feature = "native")]
 mod assembly;
 #[cfg(feature = "native")]
+mod committed_forces;
+#[cfg(feature = "native")]
 pub mod constraints;
 #[cfg(feature = "native")]
 mod diagnostics;

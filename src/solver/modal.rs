@@ -162,7 +162,7 @@ impl Model<'_> {
                     .expect("interface geometry built at set-up");
                 block
                     .evaluate(be, geo, &Vector24::zeros(), true)
-                    .map(|r| r.k.expect("a tangent was asked for"))
+                    .map(|r| *r.k.expect("a tangent was asked for"))
                     .map_err(|m| SolveError::Material {
                         element,
                         reason: m.reason,

@@ -119,6 +119,9 @@ pub struct Model<'a> {
     /// their insertion), without the waits of the collective assembly: the ranks' figures
     /// side by side show the load balance of the assembly.
     pub(super) element_seconds: f64,
+    /// In a linear scene: f_int at the committed displacement while the trial states are the
+    /// committed ones ([`super::committed_forces`]); `None` otherwise.
+    pub(super) f_int_committed: Option<Vector>,
 }
 
 impl<'a> Model<'a> {
@@ -170,6 +173,7 @@ impl<'a> Model<'a> {
             gather,
             gather_committed,
             dirichlet_diag: 1.0,
+            f_int_committed: None,
             element_seconds: 0.0,
             active_block: vec![false; mesh.blocks.len()],
             node_active: vec![false; mesh.num_nodes()],
@@ -356,6 +360,7 @@ impl<'a> Model<'a> {
     /// and their strains count from the current displacement) and marks their nodes.
     /// Collective.
     pub(super) fn place(&mut self, activate: &[u32]) -> Result<(), SolveError> {
+        self.f_int_committed = None;
         let mesh = &self.scene.mesh;
         let mut newly = vec![false; mesh.blocks.len()];
         for &b in activate {
@@ -452,6 +457,7 @@ impl<'a> Model<'a> {
     /// Restores the states of every evaluated element from `states` (one encoding each, in
     /// [`Discretization::elements`] order). Fails naming the element whose bytes do not decode.
     pub(super) fn decode_states(&mut self, states: &[Vec<u8>]) -> Result<(), String> {
+        self.f_int_committed = None;
         for (i, &(b, be)) in self.elem_block.iter().enumerate() {
             let bytes = &states[i];
             let decoded = match &mut self.blocks[b] {

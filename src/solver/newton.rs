@@ -145,14 +145,15 @@ impl NewtonStep<'_, '_> {
         match outcome {
             SnesOutcome::Converged => {
                 let same = model.u.read(|u| x.read(|s| u == s))??;
+                let mut f_int = self.f_int;
                 if any_true(model.comm, !same) {
                     model.u.copy_from(x)?;
-                    let mut f = model.u.duplicate()?;
-                    let assembled = model.assemble(&mut f, false, false);
+                    self.report.element_loops += 1;
+                    let assembled = model.assemble(&mut f_int, false, false);
                     any_error(model.comm, assembled).map_err(SolveError::Collective)?;
                 }
                 self.report.newton_iterations += iterations;
-                model.commit()
+                model.commit_at(&f_int)
             }
             SnesOutcome::DomainError => {
                 let m = self
@@ -190,7 +191,11 @@ impl NewtonStep<'_, '_> {
             self.residual_at = None;
         }
         self.model.u.copy_from(x)?;
+        if !want_k && !trial_is_current && self.model.kept_forces_at(x, &mut self.f_int)? {
+            return Ok(true);
+        }
         let t0 = Instant::now();
+        self.report.element_loops += 1;
         let assembled = self.model.assemble(&mut self.f_int, want_k, trial_is_current);
         let dt = t0.elapsed().as_secs_f64();
         self.report.assembly_seconds += dt;

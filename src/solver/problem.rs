@@ -34,6 +34,10 @@ pub struct Problem<'a> {
     /// In a dynamic stage of a linear scene: the Δt at which the kept Jacobian was built
     /// (`None`: not yet built since the last reset of the solver).
     pub(super) kept_jacobian_dt: Option<f64>,
+    /// The external and placement forces of the current stage at the load factor of the
+    /// last step (its bits), kept for the next step at the same factor: every step of a
+    /// dynamic stage (cleared when a stage begins or a state is restored).
+    pub(super) f_ext_kept: Option<(u64, Vector)>,
     /// Per owned node: displacement at the end of the stage that placed it; reported
     /// displacements count from there (the surface of a new lift starts at zero).
     pub(super) node_offset: Vec<[f64; 3]>,
@@ -76,6 +80,7 @@ impl<'a> Problem<'a> {
             integrator: Box::new(QuasiStatic::default()),
             stage: 0,
             kept_jacobian_dt: None,
+            f_ext_kept: None,
             node_offset: vec![[0.0; 3]; n_owned_nodes],
             node_was_active: vec![false; n_owned_nodes],
             u_stage_start: Vec::new(),
@@ -262,6 +267,24 @@ impl<'a> Problem<'a> {
         self.scene.stages[self.stage].dynamic.is_some() && self.model.is_linear()
     }
 
+    /// The external and placement forces of the current stage at load factor `lambda`: those
+    /// of the last step when it had the same factor (a stage's loads and placed blocks do not
+    /// change within it), else assembled. Collective.
+    fn external_force(&mut self, lambda: f64) -> Result<Vector, SolveError> {
+        let key = lambda.to_bits();
+        if !matches!(&self.f_ext_kept, Some((k, _)) if *k == key) {
+            let mut f = self.model.u.duplicate()?;
+            let terms = &self.scene.stages[self.stage].terms;
+            self.loads.external_force(&self.model, terms, lambda, &mut f)?;
+            add_placement_force(&self.model, &mut f)?;
+            self.f_ext_kept = Some((key, f));
+        }
+        let (_, kept) = self.f_ext_kept.as_ref().expect("kept just above");
+        let mut f_ext = kept.duplicate()?;
+        f_ext.copy_from(kept)?;
+        Ok(f_ext)
+    }
+
     /// A copy of the committed displacement (owned DOFs).
     fn committed_copy(&self) -> Result<Vector, SolveError> {
         let mut u = self.model.u_committed.duplicate()?;
@@ -288,11 +311,7 @@ impl<'a> Problem<'a> {
         (guess, predicted): (Vector, bool),
         report: &mut SolveReport,
     ) -> Result<(), SolveError> {
-        let mut f_ext = self.model.u.duplicate()?;
-        let terms = &self.scene.stages[self.stage].terms;
-        self.loads
-            .external_force(&self.model, terms, lambda, &mut f_ext)?;
-        add_placement_force(&self.model, &mut f_ext)?;
+        let f_ext = self.external_force(lambda)?;
         let target = StepTarget {
             f_ext,
             targets: self.constraints.targets(self.model.disc.dof_lo, lambda),

@@ -13,6 +13,11 @@ pub struct SolveReport {
     /// Newton iteration and step start, plus the line search's trial points.
     #[serde(default)]
     pub residual_evaluations: u64,
+    /// Element loops (integrations of every placed element): the residual evaluations less
+    /// those that took the forces kept at the committed state of a linear scene, plus the
+    /// Jacobians and the re-evaluations at a converged point.
+    #[serde(default)]
+    pub element_loops: u64,
     /// KSP iterations of each linear solve.
     pub ksp_iterations: Vec<u32>,
     /// Relative residual after each Newton iteration.

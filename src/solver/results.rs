@@ -71,7 +71,9 @@ impl Problem<'_> {
     /// Displacements (from each node's placement) and reactions of the owned nodes.
     fn node_results(&mut self) -> Result<LocalResults, SolveError> {
         let mut f_int = self.model.u.duplicate()?;
-        self.model.assemble(&mut f_int, false, false)?;
+        if !self.model.kept_forces_at(&self.model.u, &mut f_int)? {
+            self.model.assemble(&mut f_int, false, false)?;
+        }
         let mut f_ext = self.model.u.duplicate()?;
         let terms = &self.scene.stages[self.stage].terms;
         self.loads.external_force(&self.model, terms, 1.0, &mut f_ext)?;

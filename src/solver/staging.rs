@@ -18,6 +18,7 @@ impl Problem<'_> {
     /// stage's modal analysis, if any ([`super::modal`]). Collective.
     pub fn begin_stage(&mut self, k: usize) -> Result<(), SolveError> {
         self.stage = k;
+        self.f_ext_kept = None;
         for (i, &n) in self.model.disc.owned_nodes.iter().enumerate() {
             self.node_was_active[i] = self.model.node_active[n as usize];
         }
@@ -199,6 +200,7 @@ impl Problem<'_> {
     /// nodes it placed get their current displacement as the zero of their reported
     /// displacement (a new lift's surface starts level; settlement counts from its placement).
     pub fn end_stage(&mut self) -> Result<(), SolveError> {
+        self.f_ext_kept = None;
         self.loads
             .end_stage(&self.model, &self.scene.stages[self.stage].terms)?;
         let u_own: Vec<f64> = self.model.u.read(|s| s.to_vec())?;
@@ -271,6 +273,7 @@ impl Problem<'_> {
         }
         self.model.decode_states(&state.element_states)?;
         self.stage = state.stages_done.saturating_sub(first);
+        self.f_ext_kept = None;
         let model = &mut self.model;
         model.active_block.clone_from(&state.active_block);
         model.node_active.clone_from(&state.node_active);

@@ -24,6 +24,14 @@
 //! reach them; `-canonical_dynamic_pc_type lu` restores lagged LU factors in dynamic stages,
 //! refactored after solves of more than 30 GMRES iterations, to the same tolerance
 //! (`cfrd::performance`, "The seed quake (medium mesh)", compares the two).
+//!
+//! **Kept factors: a linear scene's time steps.** Where the Jacobian is built once and kept
+//! ([`super::Snes::set_kept_jacobian`]), the distributed solver ([`DistributedLu::kept`])
+//! factors it completely and applies the factors alone (`preonly`): they are those of the very
+//! matrix solved. On one rank it factors the matrix converted to 3×3 node blocks
+//! (`MATSEQBAIJ`) with PETSc's own LU, whose substitution took 2.8–2.9 ms on the linear
+//! embankment of `cfrd::performance` against 4.6–5.7 ms for the scalar matrix and 7.1 ms with
+//! MUMPS; on several ranks MUMPS factors the distributed matrix.
 #![allow(unsafe_code)]
 
 use super::error::{call, chk, convert, PetscError};
@@ -364,6 +372,18 @@ fn subdomain_pc_type(pc: p::PC) -> Result<Vec<u8>, PetscError> {
         .to_vec())
 }
 
+impl Drop for DistributedLu {
+    fn drop(&mut self) {
+        if let Some(blocked) = &mut self.blocked {
+            // SAFETY: made by MatConvert (or null, which MatDestroy accepts), destroyed once;
+            // the inner solver that refers to it keeps its own reference.
+            unsafe {
+                p::MatDestroy(blocked);
+            }
+        }
+    }
+}
+
 impl Drop for LaggedLu {
     fn drop(&mut self) {
         // SAFETY: created by KSPCreate (or null, which KSPDestroy accepts), destroyed once.
@@ -385,6 +405,9 @@ pub struct DistributedLu {
     inner: LaggedLu,
     /// The shell has factored a matrix of this stage.
     factored: bool,
+    /// With kept factors on one rank: the matrix in 3×3 blocks (`MATSEQBAIJ`), which the
+    /// factors are of (null until the first set-up; [`DistributedLu::kept`]).
+    blocked: Option<p::Mat>,
 }
 
 /// The name the distributed LU's shell reports (`-ksp_view`), and by which it is recognised.
@@ -407,6 +430,25 @@ impl DistributedLu {
                 time_stepping,
             )?,
             factored: false,
+            blocked: None,
+        }))
+    }
+
+    /// The shell's state for a matrix that is built once and kept (a linear scene's time
+    /// steps, [`super::Snes::set_kept_jacobian`]): its complete factors applied alone
+    /// (`preonly`), every set-up a factorization. On one rank the factors are PETSc's own
+    /// LU, whose substitutions are quicker than MUMPS's there (`cfrd::performance`, "A linear
+    /// scene's quake against OpenSees").
+    pub fn kept(comm: mpi::ffi::MPI_Comm) -> Result<Box<DistributedLu>, PetscError> {
+        let one = comm_size(comm)? == 1;
+        let package = match one {
+            true => p::MATSOLVERPETSC,
+            false => p::MATSOLVERMUMPS,
+        };
+        Ok(Box::new(DistributedLu {
+            inner: LaggedLu::new(comm, "distributed_", false, Some(package), false)?,
+            factored: false,
+            blocked: one.then(null_mut),
         }))
     }
 
@@ -438,7 +480,19 @@ impl PcShell for DistributedLu {
     fn setup(&mut self, pc: p::PC) -> Result<(), PetscError> {
         let (mut a, mut pmat): (p::Mat, p::Mat) = (null_mut(), null_mut());
         call!(PCGetOperators(pc, &mut a, &mut pmat))?;
-        if !self.factored {
+        if let Some(blocked) = &mut self.blocked {
+            let reuse = match blocked.is_null() {
+                true => p::MAT_INITIAL_MATRIX,
+                false => p::MAT_REUSE_MATRIX,
+            };
+            call!(MatConvert(
+                pmat,
+                p::MATSEQBAIJ.as_ptr() as *const c_char,
+                reuse,
+                blocked
+            ))?;
+            call!(KSPSetOperators(self.inner.ksp, *blocked, *blocked))?;
+        } else if !self.factored {
             call!(KSPSetOperators(self.inner.ksp, pmat, pmat))?;
         }
         let fresh = !self.factored || self.inner.wants_factors();

@@ -122,22 +122,24 @@ impl LinearSolver {
 
     /// Makes the shell state of the method on communicator `comm` (for a dynamic stage with
     /// `time_stepping`), before the SNES reads its options; with the reduced multigrid, its
-    /// inexact-Newton defaults.
+    /// inexact-Newton defaults. With `kept` (the Jacobian is built once and kept,
+    /// [`super::Snes::set_kept_jacobian`]) a direct solver applies the complete factors of the
+    /// kept matrix alone, with no Krylov iteration around them ([`super::lagged_lu`]).
     pub(super) fn create(
         &mut self,
         comm: mpi::ffi::MPI_Comm,
         symmetric: bool,
-        time_stepping: bool,
+        (time_stepping, kept): (bool, bool),
     ) -> Result<(), PetscError> {
         if let LinearMethod::Canonical(canonical) = &self.method {
-            self.canonical_lu = Some(CanonicalLu::new(
-                canonical.dofs.clone(),
-                canonical.reuse_factorization,
-                time_stepping,
-            )?);
+            let reuse = canonical.reuse_factorization && !kept;
+            self.canonical_lu = Some(CanonicalLu::new(canonical.dofs.clone(), reuse, time_stepping)?);
         }
         if let LinearMethod::DistributedLu { reuse_factorization } = &self.method {
-            self.distributed_lu = Some(DistributedLu::new(comm, *reuse_factorization, time_stepping)?);
+            self.distributed_lu = Some(match kept {
+                true => DistributedLu::kept(comm)?,
+                false => DistributedLu::new(comm, *reuse_factorization, time_stepping)?,
+            });
         }
         if let LinearMethod::ReducedAmg { structure } = &self.method {
             self.reduced_amg = Some(ReducedAmg::new(comm, symmetric, structure.clone())?);

@@ -132,7 +132,8 @@ impl Snes {
     /// cfrd's settings on a new SNES.
     fn configure(&mut self) -> Result<(), PetscError> {
         let (max_it, rtol, ksp_max_it, symmetric) = self.settings;
-        self.solver.create(self.comm, symmetric, self.time_stepping)?;
+        self.solver
+            .create(self.comm, symmetric, (self.time_stepping, self.kept_jacobian))?;
         let s = &*self;
         call!(SNESSetType(s.raw, p::SNESNEWTONLS.as_ptr() as *const c_char))?;
         // the problem's convergence test decides; only the iteration limit is SNES's own
