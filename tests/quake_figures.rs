@@ -140,13 +140,8 @@ fn a_short_quake_writes_the_seed_dynamic_figures() {
 /// stream; not the slab's top edge, which stands higher.
 fn check_crest(out: &Path) {
     let h5 = out.join("results.h5");
-    let summary = std::fs::read_to_string(out.join("quake_summary.json")).unwrap();
-    let summary: serde_json::Value = serde_json::from_str(&summary).unwrap();
-    let crest_id = summary["crest_node_id"].as_i64().expect("crest_node_id");
-    let (coords, ids) = (
-        read_f64(&h5, "/mesh/coordinates"),
-        read_i64(&h5, "/mesh/node_ids"),
-    );
+    let (crest, coords) = crest_node(out);
+    let ids = read_i64(&h5, "/mesh/node_ids");
     let (topology, blocks) = (
         read_i64(&h5, "/mesh/topology"),
         read_i64(&h5, "/mesh/element_block"),
@@ -167,10 +162,6 @@ fn check_crest(out: &Path) {
             on_fill[n as usize] |= name.starts_with("fill");
         }
     }
-    let crest = ids
-        .iter()
-        .position(|&i| i == crest_id)
-        .expect("the crest node in the mesh");
     let z = |n: usize| coords[3 * n + 2];
     let fill_top = (0..ids.len())
         .filter(|&n| on_fill[n])
@@ -181,12 +172,12 @@ fn check_crest(out: &Path) {
         .map(z)
         .fold(f64::MIN, f64::max);
     println!(
-        "crest node {crest_id} at {:?}; fill top {fill_top}, slab top {slab_top}",
+        "crest node {crest} at {:?}; fill top {fill_top}, slab top {slab_top}",
         &coords[3 * crest..3 * crest + 3]
     );
     assert!(
         on_fill[crest] && !on_slab[crest],
-        "the crest node {crest_id} is a fill node"
+        "the crest node {crest} is a fill node"
     );
     assert!(
         (z(crest) - fill_top).abs() < 1e-6,

@@ -270,7 +270,7 @@ impl<'a> Problem<'a> {
     /// The external and placement forces of the current stage at load factor `lambda`: those
     /// of the last step when it had the same factor (a stage's loads and placed blocks do not
     /// change within it), else assembled. Collective.
-    fn external_force(&mut self, lambda: f64) -> Result<Vector, SolveError> {
+    pub(super) fn external_force(&mut self, lambda: f64) -> Result<Vector, SolveError> {
         let key = lambda.to_bits();
         if !matches!(&self.f_ext_kept, Some((k, _)) if *k == key) {
             let mut f = self.model.u.duplicate()?;

@@ -2,7 +2,6 @@
 //! reactions, mean element stresses and strains, interface tractions and jumps.
 
 use super::error::SolveError;
-use super::loads::add_placement_force;
 use super::model::BlockStates;
 use super::problem::Problem;
 use super::report::{LocalResults, NodeMotion, ELEMENT_STATE};
@@ -74,10 +73,7 @@ impl Problem<'_> {
         if !self.model.kept_forces_at(&self.model.u, &mut f_int)? {
             self.model.assemble(&mut f_int, false, false)?;
         }
-        let mut f_ext = self.model.u.duplicate()?;
-        let terms = &self.scene.stages[self.stage].terms;
-        self.loads.external_force(&self.model, terms, 1.0, &mut f_ext)?;
-        add_placement_force(&self.model, &mut f_ext)?;
+        let f_ext = self.external_force(1.0)?;
         let mut reac = f_int;
         reac.axpy(-1.0, &f_ext)?;
         let reac_all: Vec<f64> = reac.read(|s| s.to_vec())?;

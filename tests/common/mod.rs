@@ -344,6 +344,21 @@ pub fn assert_bitwise_equal(a: &Path, b: &Path) -> Vec<String> {
     fields
 }
 
+/// The crest node of the quake run in `out` (`crest_node_id` of its `quake_summary.json`) as
+/// an index of its results file's mesh, with the mesh's node coordinates (x, y, z per node).
+pub fn crest_node(out: &Path) -> (usize, Vec<f64>) {
+    let text = std::fs::read_to_string(out.join("quake_summary.json")).unwrap();
+    let summary: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let id = summary["crest_node_id"].as_i64().expect("crest_node_id");
+    let h5 = out.join("results.h5");
+    let ids = read_i64(&h5, "/mesh/node_ids");
+    let n = ids
+        .iter()
+        .position(|&i| i == id)
+        .expect("the crest node in the mesh");
+    (n, read_f64(&h5, "/mesh/coordinates"))
+}
+
 /// A count of the run in the output directory `out` (its `summary.json`).
 pub fn summary_count(out: &Path, key: &str) -> u64 {
     let text = std::fs::read_to_string(out.join("summary.json")).unwrap();
