@@ -354,9 +354,11 @@
 //! In a dynamic stage (its `linear_solver`, default `distributed_lu`) both direct solvers change
 //! their inner solver: the Jacobian of a time step is dominated by the mass term, and an
 //! incomplete LU of the current Jacobian (ILU(0), additive Schwarz with ILU(0) on subdomains
-//! overlapping by two layers for the distributed solver) preconditions GMRES to 1e-6 for less
-//! than the substitutions of complete factors (twice as fast on the coarse seed quake and over
-//! the first 0.88 s of the medium one, [`crate::performance`]). With `distributed_lu` no rank
+//! overlapping by two layers for the distributed solver, on the Jacobian in 3×3 node blocks)
+//! preconditions GMRES for less than the substitutions of complete factors (twice as fast on
+//! the coarse seed quake and over the first 0.88 s of the medium one, [`crate::performance`]).
+//! GMRES solves a correction to 1e-6 of its residual, or only to a tenth of the Newton
+//! tolerance where that is looser, so the later corrections of a step cost few iterations. With `distributed_lu` no rank
 //! holds the whole Jacobian, its factors or a whole vector (`summary.json`,
 //! `solver_rows_held_per_rank`; `dynamics::the_default_dynamic_solver_holds_no_global_matrix_on_any_rank`);
 //! a solve that fails on ILU(0) is repeated with one more level of fill, up to ILU(2), kept for

@@ -51,7 +51,8 @@
 //! * **Quakes** on the dynamic stages' default distributed solver agree between rank counts to
 //!   the Newton tolerance, not bit for bit (its Schwarz subdomains follow the partition): the
 //!   small GP-interface dam's 0.3 s quake on 1, 2 and 4 ranks, the statics on the canonical LU,
-//!   differs by 6.9e-8 (2 ranks) and 1.1e-7 (4) of the largest displacement
+//!   differs by 5.4e-6 (2 ranks) and 3.6e-6 (4) of the largest displacement, a correction
+//!   being solved only to a tenth of the Newton tolerance
 //!   (`dynamics::a_quake_on_the_distributed_solver_agrees_on_1_2_and_4_ranks`, bound 1e-5), and
 //!   on 8 ranks (oversubscribed) by 8.6e-8 in the displacement and 7.7e-5 in the acceleration
 //!   (`cfrd compare` of that scene run by hand, build of 18ba5c8). With `linear_solver:
@@ -470,7 +471,10 @@
 //! crest" is node 608, the centre of the rockfill crest on the axis middle, which it follows
 //! now ([`crate::post::quake::crest_node`]). The rows of the rockfill crest are the committed
 //! scenes run by `mpirun -n 2 cfrd run inputs/scenes/seed_coarse_{gp_interface,mohr_coulomb}_quake.yaml -o OUT`
-//! (2 min 30 s and 2 min 11 s); the other rows are earlier builds' runs of the slab edge.
+//! (2 min 30 s and 2 min 11 s); the other rows are earlier builds' runs of the slab edge. With
+//! a time step's corrections solved to a tenth of the Newton tolerance on node blocks (the
+//! same commands, 1 min 56 s and 1 min 30 s): spike ratios 1.006 / 1.002 / 1.024 and 1.011 /
+//! 1.005 / 1.014, amplification 5.81 / 3.74 / 4.49 and 5.73 / 3.90 / 4.98.
 //! The rockfill crest's horizontal amplification along the stream, 5.7–5.8, is above what
 //! well-compacted CFRDs show (1.5–4); on this mesh the crest is one element row thick.
 //!
@@ -564,7 +568,12 @@
 //!   `/usr/bin/time -v mpirun -n 2 cfrd run inputs/scenes/seed_medium_gp_interface_quake.yaml
 //!   -o OUT -q` (37 min 27 s, 2 cut-backs, 515 MiB peak per rank): 17.72 / 13.88 / 14.95
 //!   against 14.89 / 13.89 / 8.83 m/s², **ratios 1.19 / 1.00 / 1.69**, amplification over PGA
-//!   5.9 / 4.6 / 7.5. What remains above 20 Hz comes in the same bursts, at t = 9.35–9.36,
+//!   5.9 / 4.6 / 7.5. The same command on the build whose time steps solve their corrections
+//!   to a tenth of the Newton tolerance (24 min 7 s, 3 cut-backs; [`crate::performance`]):
+//!   18.10 / 13.88 / 16.78 against 14.96 / 13.88 / 8.77 m/s², ratios 1.21 / 1.00 / 1.91,
+//!   amplification 6.0 / 4.6 / 8.4, the residual slab table within 0.46 % of its largest values
+//!   of that run (`cfrd accuracy --quake`): the spikes follow the contact's closing times,
+//!   which a solution within the Newton tolerance moves by a step. What remains above 20 Hz comes in the same bursts, at t = 9.35–9.36,
 //!   11.12–11.16 and 12.11–12.14 s (and 4.71 s), alternating in sign from one step to the
 //!   next (a_z at 12.11–12.14 s: −5.7, +8.1, −6.8, +5.3 m/s² above the low-passed history):
 //!   the times at which I-D, the crest's slab–cushion interface element, opens and closes

@@ -48,6 +48,13 @@ pub(super) struct StepTarget {
 /// there has a residual of at most the step's load increment.
 pub const PREDICTION_REJECTED_AT: f64 = 0.5;
 
+/// A Newton correction is solved until its linearized residual is at most this share of the
+/// step's tolerance, ‖F‖ ≤ share · tolerance · max(‖f_ext‖, ‖f_int‖, ‖g‖) (the direct
+/// solvers' GMRES in a dynamic stage, [`SnesProblem::correction_tolerance`]; their relative
+/// tolerance still applies where it is looser): a linear solve then leaves no more error than
+/// a tenth of what the convergence test accepts, and is not solved further for nothing.
+pub const CORRECTION_SHARE: f64 = 0.1;
+
 /// Solves one step to equilibrium from the initial guess `x` (the committed state or the
 /// integrator's prediction; Newton on SNES with `snes`) and commits the states on
 /// convergence. On failure the model's trial state is left where the last iterate was; the
@@ -327,6 +334,10 @@ impl SnesProblem for NewtonStep<'_, '_> {
 
     fn last_residual_converged(&self) -> bool {
         self.residual_at.is_some() && self.relative_residual() <= self.target.tolerance
+    }
+
+    fn correction_tolerance(&self) -> Option<f64> {
+        Some(CORRECTION_SHARE * self.target.tolerance * self.ref_norm)
     }
 
     fn converged(&mut self, it: u32, _fnorm: f64, linear_iterations: u32) -> Option<bool> {

@@ -148,6 +148,11 @@ impl CanonicalLu {
         self.inner.last_iterations
     }
 
+    /// The absolute tolerance of a dynamic stage's solves (`LaggedLu::set_absolute_tolerance`).
+    pub(super) fn set_absolute_tolerance(&mut self, atol: f64) -> Result<(), PetscError> {
+        self.inner.set_absolute_tolerance(atol)
+    }
+
     /// Which rows of `pmat` are coupled, in canonical order, and the diagonal in that order.
     ///
     /// A row is decoupled when no entry off the diagonal in its row or column is nonzero: the

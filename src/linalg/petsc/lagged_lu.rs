@@ -17,7 +17,13 @@
 //! with ILU(0) on subdomains overlapping by [`SCHWARZ_OVERLAP`] layers) preconditions GMRES
 //! well: it is factored afresh at every Jacobian, costs
 //! a few matrix products, and GMRES (restart [`INCOMPLETE_RESTART`], at most
-//! [`INCOMPLETE_MAX_ITERATIONS`] iterations) solves to the relative tolerance 1e-6. A solve that
+//! [`INCOMPLETE_MAX_ITERATIONS`] iterations) solves to the relative tolerance 1e-6, or only
+//! until the linearized residual is a tenth of what the Newton step's convergence test accepts
+//! where that is looser (the Newton step gives that tolerance with each Jacobian): a step's first
+//! correction, from a residual near the inertia forces, is solved to about 1e-6, the later
+//! ones to 1e-3–1e-1. The distributed solver factors and multiplies a copy of the Jacobian in
+//! 3×3 node blocks (`MATMPIBAIJ`, `blocked.rs`; `-distributed_dynamic_blocked false`
+//! keeps the scalar matrix; `cfrd::performance`, "The seed quake (medium mesh)"). A solve that
 //! does not converge fails the Newton step, which is cut back (a shorter step is more strongly
 //! mass-dominated). The options of a dynamic stage take the prefix `<prefix>dynamic_`, so the
 //! static stages' choice of package (`-canonical_pc_factor_mat_solver_type mumps`) does not
@@ -34,8 +40,9 @@
 //! MUMPS; on several ranks MUMPS factors the distributed matrix.
 #![allow(unsafe_code)]
 
+use super::blocked::BlockedCopy;
 use super::error::{call, chk, convert, PetscError};
-use super::options::default_option;
+use super::options::{bool_option, default_option};
 use super::pc_shell::{self, PcShell};
 use crate::linalg::ffi as p;
 use std::ffi::{c_char, CStr, CString};
@@ -58,8 +65,9 @@ const LAGGED_RTOL: f64 = 1e-9;
 /// Jacobian take 18–27 GMRES iterations to 1e-9 and were renewed at every other step; these
 /// two settings renew them only where GMRES needs it.
 const TIME_STEPPING_REFACTOR_AFTER: i32 = 30;
-/// GMRES's relative tolerance in a dynamic stage (lagged or incomplete factors): still ten
-/// times below the seed scenes' Newton tolerance.
+/// GMRES's relative tolerance in a dynamic stage (lagged or incomplete factors), unless the
+/// Newton step asks for less ([`LaggedLu::set_absolute_tolerance`]): still ten times below
+/// the seed scenes' Newton tolerance.
 const TIME_STEPPING_RTOL: f64 = 1e-6;
 /// Overlap of the subdomains of the distributed solver's additive Schwarz preconditioner in a
 /// dynamic stage (`-distributed_dynamic_pc_asm_overlap` overrides). On the small GP-interface
@@ -103,6 +111,8 @@ pub(crate) struct LaggedLu {
     /// Levels of fill of the incomplete factors (raised when a solve fails, for the rest of
     /// the stage).
     fill_levels: i32,
+    /// For the Jacobians of a dynamic stage.
+    time_stepping: bool,
 }
 
 impl LaggedLu {
@@ -137,6 +147,7 @@ impl LaggedLu {
             refactor_after,
             set_up: false,
             fill_levels: 0,
+            time_stepping,
         };
         let c_prefix = CString::new(prefix.as_str()).expect("no NUL");
         lu.read_refactor_after(&c_prefix)?;
@@ -266,6 +277,24 @@ impl LaggedLu {
         std::mem::take(&mut self.factorizations)
     }
 
+    /// In a dynamic stage: GMRES stops too once the residual's norm is at most `atol`, the
+    /// share of the Newton tolerance a correction needs (module docs, "Dynamic stages");
+    /// a static stage's solves keep their relative tolerance alone.
+    pub(crate) fn set_absolute_tolerance(&mut self, atol: f64) -> Result<(), PetscError> {
+        if !self.time_stepping {
+            return Ok(());
+        }
+        let (mut rtol, mut old, mut dtol, mut max_it) = (0.0, 0.0, 0.0, 0);
+        call!(KSPGetTolerances(
+            self.ksp,
+            &mut rtol,
+            &mut old,
+            &mut dtol,
+            &mut max_it
+        ))?;
+        call!(KSPSetTolerances(self.ksp, rtol, atol, dtol, max_it))
+    }
+
     /// Factors the current matrix again with one more level of fill ([`MAX_FILL_LEVELS`]):
     /// every factored solver's preconditioner is reset, given the new level and set up again
     /// on the matrix it had.
@@ -372,18 +401,6 @@ fn subdomain_pc_type(pc: p::PC) -> Result<Vec<u8>, PetscError> {
         .to_vec())
 }
 
-impl Drop for DistributedLu {
-    fn drop(&mut self) {
-        if let Some(blocked) = &mut self.blocked {
-            // SAFETY: made by MatConvert (or null, which MatDestroy accepts), destroyed once;
-            // the inner solver that refers to it keeps its own reference.
-            unsafe {
-                p::MatDestroy(blocked);
-            }
-        }
-    }
-}
-
 impl Drop for LaggedLu {
     fn drop(&mut self) {
         // SAFETY: created by KSPCreate (or null, which KSPDestroy accepts), destroyed once.
@@ -405,9 +422,10 @@ pub struct DistributedLu {
     inner: LaggedLu,
     /// The shell has factored a matrix of this stage.
     factored: bool,
-    /// With kept factors on one rank: the matrix in 3×3 blocks (`MATSEQBAIJ`), which the
-    /// factors are of (null until the first set-up; [`DistributedLu::kept`]).
-    blocked: Option<p::Mat>,
+    /// The matrix in 3×3 node blocks, which the factors are of and GMRES multiplies by: with
+    /// kept factors on one rank ([`DistributedLu::kept`]) and with a dynamic stage's
+    /// incomplete factors (module docs).
+    blocked: Option<BlockedCopy>,
 }
 
 /// The name the distributed LU's shell reports (`-ksp_view`), and by which it is recognised.
@@ -421,16 +439,21 @@ impl DistributedLu {
         reuse: bool,
         time_stepping: bool,
     ) -> Result<Box<DistributedLu>, PetscError> {
+        let inner = LaggedLu::new(
+            comm,
+            "distributed_",
+            reuse,
+            Some(p::MATSOLVERMUMPS),
+            time_stepping,
+        )?;
+        let blocked = inner.incomplete && bool_option("-distributed_dynamic_blocked", true)?;
         Ok(Box::new(DistributedLu {
-            inner: LaggedLu::new(
-                comm,
-                "distributed_",
-                reuse,
-                Some(p::MATSOLVERMUMPS),
-                time_stepping,
-            )?,
+            inner,
             factored: false,
-            blocked: None,
+            blocked: match blocked {
+                true => Some(BlockedCopy::new(comm_size(comm)?)),
+                false => None,
+            },
         }))
     }
 
@@ -448,7 +471,7 @@ impl DistributedLu {
         Ok(Box::new(DistributedLu {
             inner: LaggedLu::new(comm, "distributed_", false, Some(package), false)?,
             factored: false,
-            blocked: one.then(null_mut),
+            blocked: one.then(|| BlockedCopy::new(1)),
         }))
     }
 
@@ -471,6 +494,11 @@ impl DistributedLu {
     pub fn take_factorizations(&mut self) -> u64 {
         self.inner.take_factorizations()
     }
+
+    /// The absolute tolerance of a dynamic stage's solves ([`LaggedLu::set_absolute_tolerance`]).
+    pub(super) fn set_absolute_tolerance(&mut self, atol: f64) -> Result<(), PetscError> {
+        self.inner.set_absolute_tolerance(atol)
+    }
 }
 
 impl PcShell for DistributedLu {
@@ -481,17 +509,8 @@ impl PcShell for DistributedLu {
         let (mut a, mut pmat): (p::Mat, p::Mat) = (null_mut(), null_mut());
         call!(PCGetOperators(pc, &mut a, &mut pmat))?;
         if let Some(blocked) = &mut self.blocked {
-            let reuse = match blocked.is_null() {
-                true => p::MAT_INITIAL_MATRIX,
-                false => p::MAT_REUSE_MATRIX,
-            };
-            call!(MatConvert(
-                pmat,
-                p::MATSEQBAIJ.as_ptr() as *const c_char,
-                reuse,
-                blocked
-            ))?;
-            call!(KSPSetOperators(self.inner.ksp, *blocked, *blocked))?;
+            blocked.update(pmat)?;
+            call!(KSPSetOperators(self.inner.ksp, blocked.mat, blocked.mat))?;
         } else if !self.factored {
             call!(KSPSetOperators(self.inner.ksp, pmat, pmat))?;
         }

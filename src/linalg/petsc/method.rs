@@ -250,3 +250,31 @@ pub(super) unsafe fn shell_iterations(pc: p::PC) -> Option<u32> {
             .map(|lu| lu.last_iterations())
     }
 }
+
+/// Gives the direct solvers' inner GMRES of a dynamic stage the absolute tolerance `atol`
+/// ([`super::SnesProblem::correction_tolerance`]); other preconditioners are left as they are.
+///
+/// # Safety
+/// `pc` must be a live `PC`; if a shell, one installed by [`LinearSolver::install`], whose
+/// context is alive.
+pub(super) unsafe fn set_shell_absolute_tolerance(pc: p::PC, atol: f64) -> Result<(), PetscError> {
+    let mut kind: p::PCType = std::ptr::null();
+    call!(PCGetType(pc, &mut kind))?;
+    // SAFETY: PETSc returns its own NUL-terminated type name (null before a type is set).
+    if kind.is_null() || unsafe { std::ffi::CStr::from_ptr(kind) }.to_bytes_with_nul() != p::PCSHELL {
+        return Ok(());
+    }
+    // SAFETY: a shell (checked above), caller's contract.
+    let name = unsafe { pc_shell::name(pc) };
+    match name {
+        Some(n) if n == DistributedLu::NAME => {
+            // SAFETY: the distributed LU's shell (its name), caller's contract.
+            unsafe { pc_shell::context::<DistributedLu>(pc) }?.set_absolute_tolerance(atol)
+        }
+        Some(n) if n == CanonicalLu::NAME => {
+            // SAFETY: the canonical solver's shell (its name), caller's contract.
+            unsafe { pc_shell::context::<CanonicalLu>(pc) }?.set_absolute_tolerance(atol)
+        }
+        _ => Ok(()),
+    }
+}

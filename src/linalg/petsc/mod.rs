@@ -20,10 +20,11 @@
 //! 4. `matrix.rs` ([`Matrix`], the guard of a borrowed row) and `gather.rs` ([`Gather`]) ←
 //!    vector.
 //! 5. `csr.rs` ([`CsrLayout`], [`CsrPart`], guards of the borrowed compressed rows and values)
-//!    and `coupling.rs` (the coupled rows of a Jacobian) ← matrix; `canonical_product.rs`
+//!    and `coupling.rs` (the coupled rows of a Jacobian) ← matrix; `blocked.rs` (a matrix's
+//!    copy in node blocks) ← error; `canonical_product.rs`
 //!    ([`CanonicalProduct`]) ← matrix, gather; `pc_shell.rs` (the `PcShell` trait and the one
 //!    pair of set-up/apply trampolines of every shell) ← error.
-//! 6. [`lagged_lu`] (`LaggedLu`, [`DistributedLu`]) ← pc_shell; [`reduced_amg`]
+//! 6. [`lagged_lu`] (`LaggedLu`, [`DistributedLu`]) ← pc_shell, blocked; [`reduced_amg`]
 //!    ([`ReducedAmg`]) ← pc_shell, coupling, options, vector.
 //! 7. `canonical_lu.rs` ([`CanonicalLu`]) ← lagged_lu, coupling, gather, pc_shell.
 //! 8. `method.rs` ([`LinearMethod`], [`CanonicalSettings`], the solver built from them, the
@@ -32,6 +33,7 @@
 //!    ([`LineSearch`] and its step rules) ← problem.
 //! 9. `snes.rs` ([`Snes`], [`SnesOutcome`], the SNES callbacks) ← method, line_search, problem.
 
+mod blocked;
 mod canonical_lu;
 mod canonical_product;
 mod coupling;

@@ -34,4 +34,11 @@ pub trait SnesProblem {
     fn last_residual_converged(&self) -> bool {
         false
     }
+    /// The norm of the linearized residual at which the correction of the Newton iteration
+    /// whose Jacobian was just evaluated is solved closely enough (an absolute tolerance the
+    /// direct solvers' GMRES of a dynamic stage also stops at), or `None`: their relative
+    /// tolerance alone. The default: `None`.
+    fn correction_tolerance(&self) -> Option<f64> {
+        None
+    }
 }

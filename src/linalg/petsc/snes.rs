@@ -5,7 +5,7 @@
 use super::error::{call, callback_code, convert, to_petsc_int, PetscError};
 use super::init::Petsc;
 use super::line_search::{shell_function, LineSearch};
-use super::method::{shell_iterations, LinearMethod, LinearSolver};
+use super::method::{set_shell_absolute_tolerance, shell_iterations, LinearMethod, LinearSolver};
 use super::problem::SnesProblem;
 use super::vector::Vector;
 use crate::linalg::ffi as p;
@@ -281,10 +281,27 @@ unsafe extern "C" fn snes_jacobian<P: SnesProblem>(
     // SAFETY: as in snes_residual.
     let problem = unsafe { &mut *(ctx as *mut P) };
     match problem.jacobian(&Vector::borrowed(x)) {
-        Ok(true) => 0,
+        Ok(true) => match problem.correction_tolerance() {
+            // SAFETY: `snes` is live during its callback; its PC is a shell of cfrd's or not.
+            Some(atol) => callback_code(unsafe { correction_tolerance_to_solver(snes, atol) }),
+            None => 0,
+        },
         Ok(false) => unsafe { p::SNESSetJacobianDomainError(snes) },
         Err(e) => callback_code(Err(e)),
     }
+}
+
+/// Gives the linear solver of `snes` the absolute tolerance `atol` of the next correction
+/// ([`SnesProblem::correction_tolerance`]).
+///
+/// # Safety
+/// `snes` must be live, its linear solver installed by [`LinearSolver::install`].
+unsafe fn correction_tolerance_to_solver(snes: p::SNES, atol: f64) -> Result<(), PetscError> {
+    let (mut ksp, mut pc): (p::KSP, p::PC) = (null_mut(), null_mut());
+    call!(SNESGetKSP(snes, &mut ksp))?;
+    call!(KSPGetPC(ksp, &mut pc))?;
+    // SAFETY: the caller's contract.
+    unsafe { set_shell_absolute_tolerance(pc, atol) }
 }
 
 unsafe extern "C" fn snes_converged<P: SnesProblem>(
