@@ -227,27 +227,45 @@ impl LinearSolver {
     }
 }
 
-/// Krylov iterations of the last solve of one of cfrd's preconditioner shells, told apart by
-/// the name they report: a direct solver's inner iterations; `None` for the reduced
-/// multigrid, an ordinary preconditioner of the outer Krylov solve, whose iterations count.
+/// The state of a direct solver's shell, told apart by the name the shell reports.
+enum DirectShell<'a> {
+    /// [`DistributedLu`]'s.
+    Distributed(&'a mut DistributedLu),
+    /// [`CanonicalLu`]'s.
+    Canonical(&'a mut CanonicalLu),
+}
+
+/// The direct solver whose shell `pc` is; `None` for the reduced multigrid's shell.
 ///
 /// # Safety
 /// `pc` must be a shell installed by [`LinearSolver::install`], whose context is alive.
-pub(super) unsafe fn shell_iterations(pc: p::PC) -> Option<u32> {
+unsafe fn direct_shell<'a>(pc: p::PC) -> Option<DirectShell<'a>> {
     // SAFETY: a shell (caller's contract)
     let name = unsafe { pc_shell::name(pc) }?;
     if name == ReducedAmg::NAME {
         None
     } else if name == DistributedLu::NAME {
         // SAFETY: the distributed LU's shell (its name), caller's contract.
-        unsafe { pc_shell::context::<DistributedLu>(pc) }
-            .ok()
-            .map(|lu| lu.last_iterations())
+        let lu = unsafe { pc_shell::context::<DistributedLu>(pc) }.ok()?;
+        Some(DirectShell::Distributed(lu))
     } else {
         // SAFETY: the only other shell cfrd installs is the canonical solver.
-        unsafe { pc_shell::context::<CanonicalLu>(pc) }
-            .ok()
-            .map(|lu| lu.last_iterations())
+        let lu = unsafe { pc_shell::context::<CanonicalLu>(pc) }.ok()?;
+        Some(DirectShell::Canonical(lu))
+    }
+}
+
+/// Krylov iterations of the last solve of one of cfrd's preconditioner shells: a direct
+/// solver's inner iterations; `None` for the reduced multigrid, an ordinary preconditioner of
+/// the outer Krylov solve, whose iterations count.
+///
+/// # Safety
+/// `pc` must be a shell installed by [`LinearSolver::install`], whose context is alive.
+pub(super) unsafe fn shell_iterations(pc: p::PC) -> Option<u32> {
+    // SAFETY: the caller's contract.
+    match unsafe { direct_shell(pc) }? {
+        DirectShell::Distributed(lu) => Some(lu.last_iterations()),
+        DirectShell::Canonical(lu) => Some(lu.last_iterations()),
     }
 }
 
@@ -265,16 +283,9 @@ pub(super) unsafe fn set_shell_absolute_tolerance(pc: p::PC, atol: f64) -> Resul
         return Ok(());
     }
     // SAFETY: a shell (checked above), caller's contract.
-    let name = unsafe { pc_shell::name(pc) };
-    match name {
-        Some(n) if n == DistributedLu::NAME => {
-            // SAFETY: the distributed LU's shell (its name), caller's contract.
-            unsafe { pc_shell::context::<DistributedLu>(pc) }?.set_absolute_tolerance(atol)
-        }
-        Some(n) if n == CanonicalLu::NAME => {
-            // SAFETY: the canonical solver's shell (its name), caller's contract.
-            unsafe { pc_shell::context::<CanonicalLu>(pc) }?.set_absolute_tolerance(atol)
-        }
-        _ => Ok(()),
+    match unsafe { direct_shell(pc) } {
+        Some(DirectShell::Distributed(lu)) => lu.set_absolute_tolerance(atol),
+        Some(DirectShell::Canonical(lu)) => lu.set_absolute_tolerance(atol),
+        None => Ok(()),
     }
 }
