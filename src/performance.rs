@@ -682,6 +682,22 @@
 //! rockfill's updates at about 40 % of a step, the element stiffness with its assembly into
 //! K and the slab's incompatible modes at about 12 %; the linear solves no longer lead.
 //!
+//! **The GP update's powers, this build against the last** (the same script, `CK` the
+//! committed scene's step checkpoint at t = 8.07 s, 50 steps, 2 pairs; base 87f15fe): in a
+//! `perf record` of one rank on that window (base) the GP updates took 53 % of the time and
+//! `pow` alone 13.9 %, half of it in the invariants' J2^{3/2} and a quarter in the plastic
+//! moduli's (p̂/pa)^m. This build writes J2^{3/2} as J2·√J2 and folds (p̂/pa)^m into the
+//! exponential that H_DM and H_den already take, with ln p̂ shared with ln ζ:
+//!
+//! | pair | base, s | this build, s | Newton iterations (each) | base / this |
+//! |---|---|---|---|---|
+//! | 1 | 38.58 | 36.26 | 180 | 1.064 |
+//! | 2 | 38.39 | 36.37 | 180 | 1.055 |
+//!
+//! **1.06 times (1.055–1.064)**. The last bits of every GP update move; the coarse seed
+//! scenes' static results move by at most 5.5e-4 of the largest slab stress (within the
+//! Newton tolerance; `tests/goldens.rs`, regenerated), their Newton iterations 542 → 531.
+//!
 //! **The quake's solver choices, side by side** (windows of the medium GP quake from a step
 //! checkpoint, 2 ranks, one run after the other):
 //!
@@ -774,6 +790,9 @@
 //! | quake: every correction to a fixed 1e-2 (node blocks) or 1e-3 (scalar matrix) of its residual (medium GP window above, one run each) | 37.7 and 43.9 s against 54.1 s, the same Newton iterations | the small GP dam's 1, 2 and 4 ranks then differ by 1.6e-5 and 4.2e-5, more than the Newton tolerance |
 //! | quake: the incomplete factors kept across Jacobians while GMRES needs at most 30 iterations (prototype option, window above) | 54.3 s against 54.1 s | renewed nearly as often; no gain |
 //! | quake: the block by `MatConvert` at every Jacobian | 45.7 s against 43.9 s without blocks | the conversion inserts one scalar at a time: a sixth of the step |
+//! | quake: the Jacobian of every other Newton iteration kept (`-snes_lag_jacobian 2`, GP window at t = 8.07 s, base 87f15fe) | 95.8 s against 38.2 s, 346 Newton iterations against 180 | the tangent is what converges a step |
+//! | quake: the predictor x⁰ = u₀ + Δt·v₀ + c·Δt²·a₀ with c = 0.25 (a₁ = 0) or 0.5 (a₁ = a₀) (same window, prototype) | 38.7 and 38.4 s against 38.2 s, 180 Newton iterations each | the iterations are set by the end of a step, not its start |
+//! | GP elastic moduli as exp(m·ln(p̂/pa)) instead of a power (same window, against the powers above) | 0.978 and 1.012 | no gain |
 //! | quake: the reduced split (structure LU, fill by block Jacobi ILU(0)) as the dynamic solver (`--linear-solver reduced_amg -reduced_fieldsplit_fill_pc_type bjacobi`, window above) | 73.6 s against 54.1 s, 201 Newton iterations against 177 | the structure factored at every Jacobian |
 #![cfg_attr(doc, doc = embed_doc_image::embed_image!("accuracy", "scripts/figures/accuracy_cost.png"))]
 #![cfg_attr(doc, doc = embed_doc_image::embed_image!("mesh", "scripts/figures/mesh/accuracy_cost.png"))]

@@ -329,7 +329,8 @@ fn lode_function(dev: &Vector6, j2: f64) -> f64 {
         dev[0], dev[3], dev[5], dev[3], dev[1], dev[4], dev[5], dev[4], dev[2],
     );
     let j3 = m.determinant();
-    (1.5 * 3.0_f64.sqrt() * j3 / j2.powf(1.5)).clamp(-1.0, 1.0)
+    // J2^{3/2} as J2·√J2: a correctly rounded root and a product instead of a power
+    (1.5 * 3.0_f64.sqrt() * j3 / (j2 * j2.sqrt())).clamp(-1.0, 1.0)
 }
 
 /// Strain-like gradient of q for a deviator `dev` with deviatoric stress `q` (spec §1.2):
@@ -382,6 +383,8 @@ pub struct RockfillGp {
     params: RockfillGpParams,
     /// p_a in kPa.
     pa: f64,
+    /// ln p_a (p_a in kPa).
+    ln_pa: f64,
     /// p_min in kPa.
     pmin: f64,
     /// p_cutoff in kPa.
@@ -408,6 +411,7 @@ impl RockfillGp {
         params.validate()?;
         Ok(RockfillGp {
             pa: params.pa * 1.0e-3,
+            ln_pa: (params.pa * 1.0e-3).ln(),
             pmin: params.pmin * 1.0e-3,
             p_cutoff: params.p_cutoff * 1.0e-3,
             params,
@@ -576,10 +580,15 @@ impl RockfillGp {
     /// ζ = p̂·[1 − (α_f/(1+α_f))·(η/M_f)]^{−1/α_f},   η ≤ 0.999·η_f
     /// ```
     fn ln_zeta(&self, p_hat: f64, eta: f64, mf: f64) -> f64 {
+        self.ln_zeta_of_ln(p_hat.ln(), eta, mf)
+    }
+
+    /// [`ln_zeta`](Self::ln_zeta) from ln p̂, where the caller needs ln p̂ for more.
+    fn ln_zeta_of_ln(&self, ln_p_hat: f64, eta: f64, mf: f64) -> f64 {
         let af = self.params.alpha_f;
         let eta_c = eta.min(0.999 * self.eta_f(mf));
         let bracket = 1.0 - af / (1.0 + af) * eta_c / mf;
-        p_hat.ln() - bracket.ln() / af
+        ln_p_hat - bracket.ln() / af
     }
 
     /// ln H_den = r_d·ε_v^p, capped at ln 10¹² (spec (R13), §8.6 item 5).
@@ -596,21 +605,24 @@ impl RockfillGp {
     /// H_den = exp(r_d·ε_v^p)
     /// ```
     /// ζ_max is taken as max(ζ_max, ζ) so that H_DM ≥ 1 also inside a substep, before the
-    /// memory update of the accepted substep.
+    /// memory update of the accepted substep. The power (p̂/pa)^ml joins the exponential of
+    /// H_DM·H_den, with ln p̂ shared with ln ζ: one logarithm and one exponential in all.
     fn h_loading(&self, loc: &Local, kappa: &SVector<f64, NK>, mem: &RockfillMemory) -> f64 {
         let p = &self.params;
+        let ln_p_hat = loc.p_hat.ln();
         let hf = (1.0 - loc.eta / self.eta_f(loc.mf)).max(0.0).powi(4);
         let hv = 1.0 - loc.eta / loc.mg;
         let hs = p.beta0 * p.beta1 * (-p.beta0 * kappa[1]).exp();
         let ln_dm = if p.softening_guard && hv + hs <= 0.0 {
             0.0
         } else {
-            let ln_z = self.ln_zeta(loc.p_hat, loc.eta, loc.mf);
+            let ln_z = self.ln_zeta_of_ln(ln_p_hat, loc.eta, loc.mf);
             let ln_zmax = mem.zeta_max.max(f64::MIN_POSITIVE).ln().max(ln_z);
             (p.gamma_dm * (ln_zmax - ln_z)).min(LN_FACTOR_CAP)
         };
-        let base = p.h0 * self.pa * (loc.p_hat / self.pa).powf(p.ml) * hf * (hv + hs);
-        base * (ln_dm + self.ln_hden(kappa[0])).exp()
+        let ln_pressure = p.ml * (ln_p_hat - self.ln_pa);
+        let base = p.h0 * self.pa * hf * (hv + hs);
+        base * (ln_pressure + ln_dm + self.ln_hden(kappa[0])).exp()
     }
 
     /// Unloading plastic modulus H_U (kPa), spec (R14):
@@ -632,7 +644,8 @@ impl RockfillGp {
             0.0
         };
         let ln_den = if p.hden_on_hu { self.ln_hden(kappa[0]) } else { 0.0 };
-        p.hu0 * self.pa * (loc.p_hat / self.pa).powf(p.mu) * (ln_u + ln_den).exp()
+        let ln_pressure = p.mu * (loc.p_hat.ln() - self.ln_pa);
+        p.hu0 * self.pa * (ln_pressure + ln_u + ln_den).exp()
     }
 
     /// Converts a state to the integrator's point (kPa).
