@@ -685,7 +685,7 @@
 //! **The GP update's powers, this build against the last** (the same script, `CK` the
 //! committed scene's step checkpoint at t = 8.07 s, 50 steps, 2 pairs; base 87f15fe): in a
 //! `perf record` of one rank on that window (base) the GP updates took 53 % of the time and
-//! `pow` alone 13.9 %, half of it in the invariants' J2^{3/2} and a quarter in the plastic
+//! `pow` alone 13.9 %, called by the invariants' J2^{3/2}, the elastic moduli and the plastic
 //! moduli's (p̂/pa)^m. This build writes J2^{3/2} as J2·√J2 and folds (p̂/pa)^m into the
 //! exponential that H_DM and H_den already take, with ln p̂ shared with ln ζ:
 //!
