@@ -422,7 +422,7 @@
 //! | `cfrd run ... --integration-tol-ratio R` | caps the GP substepping tolerance at R·newton_tol, as `solver.integration_tol_ratio` does, without changing the scene |
 //! | `cfrd run ... --linear-solver iterative\|reduced_amg\|canonical_lu\|distributed_lu` | solves every stage with this linear solver instead of `solver.linear_solver` and the dynamic stages' `linear_solver`, without changing the scene: a long run continues from its checkpoint on another solver (its results then agree with the scene's to the solvers' tolerances, not bit for bit) |
 //! | `cfrd run ... -q` | prints nothing but errors |
-//! | `cfrd run ... --overwrite` | writes into a directory that holds another run's `results.h5`, `checkpoint.h5` or `summary.json` (its old checkpoint is removed first); without it such a directory is refused (exit code 2) unless the run restarts from that directory's own checkpoint. Temporary files of killed runs found there (`.results.h5.partial-<pid>` and the like) are named and removed |
+//! | `cfrd run ... --overwrite` | writes into a directory that holds another run's `results.h5`, `checkpoint.h5` or `summary.json` (its old checkpoint is removed first); without it such a directory is refused (exit code 2) unless the run restarts from that directory's own checkpoint. Temporary files of killed runs found there (`.results.h5.partial-<pid>` and the like) are named and removed. One run writes into a directory at a time: a run holds the lock of its `.cfrd.lock` (`flock`, released by the kernel when the run ends or is killed), and a second run into the same directory meanwhile exits 2 naming it (test `two_runs_into_one_output_directory_never_race`) |
 //! | `cfrd check SCENE` | parses, validates and cross-checks the scene and its mesh without solving; prints the counts of nodes, elements, blocks, fixed DOFs and stages |
 //! | `cfrd schema` | prints the JSON Schema of the scene format |
 //! | `cfrd partition SCENE -n N -o FILE` | METIS partition for N ranks, written to `FILE`; the scene then names it in `partition:` |
@@ -569,8 +569,12 @@
 //!
 //! Hostile input is refused with exit code 2 before memory is reserved for it or a solve starts:
 //! every count a mesh file announces is bounded by what a file of its size can hold; scene, mesh,
-//! record and partition files must be regular files (scenes at most 16 MiB, meshes 4 GiB, records
-//! 1 GiB); a generated mesh has at most 2^25 nodes, `mesh.cfrd.impoundment_stages` is at most
+//! record and partition files, `cfrd accel` and `cfrd point` specifications and the files given to
+//! `cfrd compare`, `cfrd export` and `--restart` must be regular files (scenes at most 16 MiB,
+//! meshes 4 GiB, records 1 GiB), and their kind is checked before anything blocks on them, so a
+//! FIFO is refused at once instead of hanging the reader (test
+//! `a_fifo_in_place_of_any_input_file_exits_2_within_5_s`); an argument that is not UTF-8 is named
+//! (`a_non_utf8_argument_exits_2_naming_it`); a generated mesh has at most 2^25 nodes, `mesh.cfrd.impoundment_stages` is at most
 //! 10 000 and a stage at most 10^6 load steps; YAML may nest at most 64 brackets deep and 256
 //! columns of indentation; a key given twice in a mapping (a block, a material) is an error
 //! naming both lines; every body of the elements placed by a stage must be held against all six

@@ -17,11 +17,17 @@ pub const MAX_MESH_BYTES: u64 = 4 << 30;
 /// dynamic stage may have.
 pub const MAX_RECORD_BYTES: u64 = 1 << 30;
 
-/// Reads the whole of the regular file `path`, at most `cap` bytes. A directory, device, FIFO
-/// or socket, and a file larger than `cap`, are refused with a message saying so (the caller
-/// adds the file name).
-pub fn read_bounded(path: &Path, cap: u64) -> Result<Vec<u8>, String> {
-    let file = std::fs::File::open(path).map_err(|e| e.to_string())?;
+/// Opens the regular file `path` for reading without ever blocking on it: the file is opened
+/// non-blocking (so a FIFO with no writer does not hang the reader) and its kind checked on
+/// the open descriptor; a directory, device, FIFO or socket is refused with a message saying
+/// so (the caller adds the file name). Every reader of a user's file opens it through here.
+pub fn open_regular(path: &Path) -> Result<std::fs::File, String> {
+    use std::os::unix::fs::OpenOptionsExt;
+    let file = std::fs::OpenOptions::new()
+        .read(true)
+        .custom_flags(libc::O_NONBLOCK)
+        .open(path)
+        .map_err(|e| e.to_string())?;
     let meta = file.metadata().map_err(|e| e.to_string())?;
     if !meta.is_file() {
         return Err(format!(
@@ -29,6 +35,21 @@ pub fn read_bounded(path: &Path, cap: u64) -> Result<Vec<u8>, String> {
             file_kind(&meta)
         ));
     }
+    Ok(file)
+}
+
+/// Checks that `path` is a regular file, without opening it for data, before a library (HDF5)
+/// that would block on a FIFO opens it; the message names the kind, as [`open_regular`]'s.
+pub fn require_regular(path: &Path) -> Result<(), String> {
+    open_regular(path).map(drop)
+}
+
+/// Reads the whole of the regular file `path` ([`open_regular`]), at most `cap` bytes. A
+/// directory, device, FIFO or socket, and a file larger than `cap`, are refused with a message
+/// saying so (the caller adds the file name).
+pub fn read_bounded(path: &Path, cap: u64) -> Result<Vec<u8>, String> {
+    let file = open_regular(path)?;
+    let meta = file.metadata().map_err(|e| e.to_string())?;
     if meta.len() > cap {
         return Err(too_large(meta.len(), cap));
     }
@@ -40,6 +61,14 @@ pub fn read_bounded(path: &Path, cap: u64) -> Result<Vec<u8>, String> {
         return Err(too_large(bytes.len() as u64, cap));
     }
     Ok(bytes)
+}
+
+/// The UTF-8 text of the regular file `path` ([`read_bounded`], at most `cap` bytes), the
+/// reason of a refusal as an I/O error, for readers whose errors carry one.
+pub fn read_text(path: &Path, cap: u64) -> std::io::Result<String> {
+    let bytes = read_bounded(path, cap).map_err(std::io::Error::other)?;
+    String::from_utf8(bytes)
+        .map_err(|e| std::io::Error::new(std::io::ErrorKind::InvalidData, format!("not UTF-8 text: {e}")))
 }
 
 fn too_large(len: u64, cap: u64) -> String {
@@ -93,6 +122,18 @@ mod tests {
         assert!(msg.contains("not a regular file (a device)"), "{msg}");
         let msg = read_bounded(Path::new("/"), 1 << 20).expect_err("a directory");
         assert!(msg.contains("a directory"), "{msg}");
+    }
+
+    #[test]
+    fn a_fifo_without_a_writer_is_refused_at_once() {
+        let dir = tempfile::tempdir().unwrap();
+        let fifo = dir.path().join("f.yaml");
+        let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+        assert!(made.unwrap().success(), "mkfifo");
+        let msg = read_bounded(&fifo, 1 << 20).expect_err("a FIFO");
+        assert!(msg.contains("not a regular file (a FIFO)"), "{msg}");
+        let msg = require_regular(&fifo).expect_err("a FIFO");
+        assert!(msg.contains("a FIFO"), "{msg}");
     }
 
     #[test]

@@ -8,7 +8,14 @@ use cli::{commands, mpi_commands};
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
-    let (args, petsc) = cli::args::split_petsc_options(std::env::args().collect());
+    let args = match cli::args::utf8_args(std::env::args_os()) {
+        Ok(args) => args,
+        Err(message) => {
+            eprintln!("error: {message}");
+            return ExitCode::from(2);
+        }
+    };
+    let (args, petsc) = cli::args::split_petsc_options(args);
     match Cli::parse_from(args).command {
         Command::Schema => commands::schema(),
         Command::Point { test, out } => commands::point(&test, &out),

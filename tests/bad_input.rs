@@ -515,3 +515,140 @@ fn every_example_scene_passes_check() {
     }
     assert!(n >= 4, "expected the example scenes in {}", dir.display());
 }
+
+/// Runs `cmd` and waits at most 5 s: the test fails (and the processes are killed) if it
+/// has not ended by then.
+fn within_5_s(mut cmd: std::process::Command, what: &str) -> (Option<i32>, String) {
+    use std::process::Stdio;
+    let out = tempfile::NamedTempFile::new().expect("temporary file");
+    let mut child = cmd
+        .stdin(Stdio::null())
+        .stdout(out.reopen().expect("reopen"))
+        .stderr(out.reopen().expect("reopen"))
+        .spawn()
+        .expect("starts");
+    let t0 = std::time::Instant::now();
+    while child.try_wait().expect("wait").is_none() {
+        if t0.elapsed() > std::time::Duration::from_secs(5) {
+            kill_tree(&mut child);
+            panic!("{what}: still running after 5 s");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    let code = child.wait().expect("wait").code();
+    (code, std::fs::read_to_string(out.path()).unwrap_or_default())
+}
+
+/// A FIFO given where cfrd reads a file (scene, mesh, partition, record, `cfrd accel` and
+/// `cfrd point` specifications, `cfrd compare` and `cfrd export` arguments) ends within 5 s
+/// with exit code 2 and a message that says it is a FIFO, alone and under `mpirun -n 2`.
+#[test]
+fn a_fifo_in_place_of_any_input_file_exits_2_within_5_s() {
+    let dir = tempdir();
+    let d = dir.path();
+    let made = std::process::Command::new("mkfifo").arg(d.join("fifo")).status();
+    assert!(made.expect("mkfifo").success());
+    let mesh = GOOD.replace(
+        "  box: { size: [1.0, 1.0, 2.0], divisions: [1, 1, 2] }",
+        "  file: fifo",
+    );
+    std::fs::write(d.join("mesh.yaml"), mesh).unwrap();
+    std::fs::write(d.join("partition.yaml"), format!("{GOOD}partition: fifo\n")).unwrap();
+    let quake = "stages:\n  - name: quake\n    dynamic: { record: fifo }\n";
+    std::fs::write(d.join("record.yaml"), format!("{GOOD}{quake}")).unwrap();
+    let cases: [&[&str]; 10] = [
+        &["check", "fifo"],
+        &["check", "mesh.yaml"],
+        &["run", "partition.yaml", "-o", "q"],
+        &["check", "record.yaml"],
+        &["accel", "fifo", "-o", "a"],
+        &["point", "fifo", "-o", "p"],
+        &["compare", "fifo", "fifo"],
+        &["export", "fifo", "-f", "displacement"],
+        &["run", "record.yaml", "-o", "r"],
+        &["run", "record.yaml", "-o", "s", "--restart", "fifo"],
+    ];
+    for args in cases {
+        let mut alone = std::process::Command::new(cfrd_bin());
+        alone.args(args).current_dir(d);
+        let mut two = cfrd::parallel::mpirun_command(2, 60);
+        two.arg(cfrd_bin()).args(args).current_dir(d);
+        for (how, cmd) in [("alone", alone), ("2 ranks", two)] {
+            let what = format!("cfrd {} ({how})", args.join(" "));
+            let (code, msg) = within_5_s(cmd, &what);
+            assert_eq!(code, Some(2), "{what}: {msg}");
+            assert!(msg.contains("FIFO"), "{what}: {msg}");
+        }
+    }
+}
+
+/// A path argument that is not UTF-8 is named with exit code 2, not a panic.
+#[test]
+fn a_non_utf8_argument_exits_2_naming_it() {
+    use std::os::unix::ffi::OsStrExt;
+    let dir = tempdir();
+    let bad = std::ffi::OsStr::from_bytes(b"d\xffm.yaml");
+    for args in [
+        vec!["check".as_ref(), bad],
+        vec!["run".as_ref(), bad, "-o".as_ref(), "o".as_ref()],
+    ] {
+        let o = std::process::Command::new(cfrd_bin())
+            .args(args)
+            .current_dir(dir.path())
+            .output()
+            .expect("cfrd starts");
+        let msg = text(&o);
+        assert_eq!(o.status.code(), Some(2), "{msg}");
+        assert!(
+            msg.contains("argument 2 ('d\u{FFFD}m.yaml') is not valid UTF-8"),
+            "{msg}"
+        );
+        assert!(!msg.contains("panicked"), "{msg}");
+    }
+}
+
+/// One run per output directory: while another process holds its lock a run exits 2 naming it;
+/// of two runs started at once into one `-o`, in 20 trials exactly one runs and the other
+/// exits 2 (the lock, or the first run's finished files, refuses it).
+#[test]
+fn two_runs_into_one_output_directory_never_race() {
+    let dir = tempdir();
+    let d = dir.path();
+    std::fs::write(d.join("scene.yaml"), GOOD).unwrap();
+    std::fs::create_dir(d.join("held")).unwrap();
+    let mut holder = std::process::Command::new("flock")
+        .args(["held/.cfrd.lock", "sleep", "30"])
+        .current_dir(d)
+        .spawn()
+        .expect("flock(1) starts");
+    std::thread::sleep(std::time::Duration::from_millis(300));
+    let o = cfrd_mpi(2, d, &["run", "scene.yaml", "-o", "held", "-q"]);
+    let msg = text(&o);
+    kill_tree(&mut holder);
+    assert_eq!(o.status.code(), Some(2), "{msg}");
+    assert!(msg.contains("another cfrd run is writing into it"), "{msg}");
+    assert!(!d.join("held/results.h5").exists(), "{msg}");
+    for trial in 0..20 {
+        let out = format!("race_{trial}");
+        let spawn = || {
+            std::process::Command::new(cfrd_bin())
+                .args(["run", "scene.yaml", "-o", &out, "-q"])
+                .current_dir(d)
+                .stdout(std::process::Stdio::piped())
+                .stderr(std::process::Stdio::piped())
+                .spawn()
+                .expect("cfrd starts")
+        };
+        let (a, b) = (spawn(), spawn());
+        let (a, b) = (a.wait_with_output().unwrap(), b.wait_with_output().unwrap());
+        let mut codes = [a.status.code(), b.status.code()];
+        codes.sort();
+        assert_eq!(
+            codes,
+            [Some(0), Some(2)],
+            "trial {trial}: {}\n{}",
+            text(&a),
+            text(&b)
+        );
+    }
+}

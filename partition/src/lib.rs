@@ -506,12 +506,25 @@ impl PartitionFile {
 
 /// Reads the partition file of a mesh of `n_cells` cells: a regular file of at most
 /// 4 KiB + 32 bytes per cell (a part number and its separators take at most 11), so a device
-/// or a FIFO is refused instead of being read without end.
+/// or a FIFO is refused instead of being read without end (opened non-blocking, so a FIFO
+/// without a writer does not hang the open either).
 fn read_bounded(path: &std::path::Path, n_cells: usize) -> Result<String, std::io::Error> {
     use std::io::Read;
-    let file = std::fs::File::open(path)?;
-    if !file.metadata()?.is_file() {
-        return Err(std::io::Error::other("not a regular file"));
+    use std::os::unix::fs::OpenOptionsExt;
+    let file = std::fs::OpenOptions::new()
+        .read(true)
+        .custom_flags(libc::O_NONBLOCK)
+        .open(path)?;
+    let kind = file.metadata()?.file_type();
+    if !kind.is_file() {
+        use std::os::unix::fs::FileTypeExt;
+        let what = match () {
+            _ if kind.is_dir() => "a directory",
+            _ if kind.is_fifo() => "a FIFO",
+            _ if kind.is_socket() => "a socket",
+            _ => "a device",
+        };
+        return Err(std::io::Error::other(format!("not a regular file ({what})")));
     }
     let cap = 4096 + 32 * n_cells as u64;
     let mut text = String::new();

@@ -299,6 +299,24 @@ fn parse_tolerance(s: &str) -> Result<f64, String> {
     }
 }
 
+/// The command line as text: every argument must be UTF-8 (paths are written into results,
+/// summaries and logs as text). The first that is not is named by its position and its
+/// lossy form, for an exit with code 2 instead of a panic.
+pub fn utf8_args(args: impl IntoIterator<Item = std::ffi::OsString>) -> Result<Vec<String>, String> {
+    args.into_iter()
+        .enumerate()
+        .map(|(i, a)| {
+            a.into_string().map_err(|a| {
+                format!(
+                    "argument {i} ('{}') is not valid UTF-8: cfrd reads paths and options as UTF-8 \
+                     text; rename the file or give another path to it",
+                    a.to_string_lossy()
+                )
+            })
+        })
+        .collect()
+}
+
 /// Splits PETSc options (`-word` with more than one letter after a single dash, plus its value
 /// when the next argument is a number, negative ones included, or is not an option and not a
 /// YAML file) from cfrd's own arguments.

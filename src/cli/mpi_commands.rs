@@ -18,7 +18,7 @@ pub fn run(a: RunArgs, petsc: Vec<String>) -> ExitCode {
             });
         }
         let dir = cfrd::io::outdir::run_output_dir(a.out.as_deref(), a.scene.as_deref());
-        preflight_run(world, dir.as_deref(), a.restart.as_deref(), a.overwrite, a.quiet)?;
+        let _lock = preflight_run(world, dir.as_deref(), a.restart.as_deref(), a.overwrite, a.quiet)?;
         let opts = cfrd::run::RunOptions {
             scene: a.scene,
             out_dir: a.out,
@@ -86,7 +86,8 @@ pub fn bench_solver(dofs: usize, out: PathBuf, petsc: Vec<String>) -> ExitCode {
 }
 
 /// Checks before `cfrd run` starts, on every rank alike: the `--restart` file is a readable
-/// regular file, and the output directory `dir` (when known) holds no other run's files
+/// regular file, no other run holds the output directory `dir` (when known; its lock is
+/// returned, to be held for the run: [`cfrd::io::run_lock`]) and it holds no other run's files
 /// ([`cfrd::io::outdir::prepare_output_dir`]). Collective.
 fn preflight_run(
     world: &mpi::topology::SimpleCommunicator,
@@ -94,18 +95,17 @@ fn preflight_run(
     restart: Option<&std::path::Path>,
     overwrite: bool,
     quiet: bool,
-) -> Result<(), cfrd::run::RunFailure> {
+) -> Result<Option<cfrd::io::run_lock::RunLock>, cfrd::run::RunFailure> {
     let input = |message: String| cfrd::run::RunFailure {
         code: cfrd::parallel::EXIT_INPUT,
         message,
     };
     let checked = restart.map_or(Ok(()), cfrd::io::preflight::check_restart_file);
     cfrd::parallel::any_error(world, checked).map_err(input)?;
-    if let Some(dir) = dir {
-        cfrd::io::outdir::prepare_output_dir_collective(world, dir, restart, overwrite, quiet)
-            .map_err(input)?;
-    }
-    Ok(())
+    let Some(dir) = dir else { return Ok(None) };
+    let lock = cfrd::io::run_lock::acquire_collective(world, dir).map_err(input)?;
+    cfrd::io::outdir::prepare_output_dir_collective(world, dir, restart, overwrite, quiet).map_err(input)?;
+    Ok(lock)
 }
 
 /// Initializes MPI, installs the abort-on-panic hook, runs `f`, and maps failures to exit codes

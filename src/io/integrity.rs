@@ -182,7 +182,7 @@ fn read_record(file: &mut std::fs::File, size: u64, path: &Path) -> Result<Recor
 /// metadata bytes) whose bytes changed (call on one rank, before HDF5 opens the file).
 pub fn verify(path: &Path) -> Result<(), IoError> {
     let err = file_err(path);
-    let mut file = std::fs::File::open(path).map_err(&err)?;
+    let mut file = crate::input::open_regular(path).map_err(|m| err(std::io::Error::other(m)))?;
     let size = file.metadata().map_err(&err)?.len();
     let record = read_record(&mut file, size, path)?;
     let mut at = 0u64;

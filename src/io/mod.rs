@@ -119,6 +119,7 @@ pub mod pacing;
 pub mod preflight;
 pub mod redistribute;
 pub mod results_reader;
+pub mod run_lock;
 pub mod summary;
 pub mod xdmf;
 

@@ -4,7 +4,9 @@
 use std::path::Path;
 
 /// Opens a results file for serial reading (rank 0 or no MPI).
+/// A FIFO, device or directory is refused before HDF5 opens (and would block on) it.
 pub fn open(p: &Path) -> Result<hdf5::File, String> {
+    crate::input::require_regular(p).map_err(|m| format!("{}: {m}", p.display()))?;
     hdf5::File::open(p).map_err(|e| format!("{}: {e}", p.display()))
 }
 

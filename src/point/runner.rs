@@ -232,17 +232,18 @@ pub fn run_file(path: &Path, out_dir: &Path) -> Result<Summary, PointError> {
 }
 
 /// Reads, parses and validates the test file `file`.
-fn load(file: &PathBuf) -> Result<PointTestFile, PointError> {
-    let text = std::fs::read_to_string(file).map_err(|source| PointError::Read {
-        path: file.clone(),
-        source,
-    })?;
+fn load(file: &Path) -> Result<PointTestFile, PointError> {
+    let text =
+        crate::input::read_text(file, crate::input::MAX_SCENE_BYTES).map_err(|source| PointError::Read {
+            path: file.to_path_buf(),
+            source,
+        })?;
     let spec = parse(&text).map_err(|message| PointError::Parse {
-        file: file.clone(),
+        file: file.to_path_buf(),
         message,
     })?;
     validate(&spec).map_err(|(field, reason)| PointError::Invalid {
-        file: file.clone(),
+        file: file.to_path_buf(),
         field,
         reason,
     })?;

@@ -120,7 +120,8 @@ fn residual_crest_settlement(path: &Path) -> Result<f64, String> {
 
 /// −u_z at the highest row after impoundment of a `fig07_dam_displacement.csv`.
 fn crest_settlement(path: &Path) -> Result<f64, String> {
-    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let text = crate::input::read_text(path, crate::input::MAX_SCENE_BYTES)
+        .map_err(|e| format!("{}: {e}", path.display()))?;
     let mut top: Option<(f64, f64)> = None;
     for line in text.lines().skip(1) {
         let f: Vec<&str> = line.split(',').collect();
@@ -137,7 +138,8 @@ fn crest_settlement(path: &Path) -> Result<f64, String> {
 
 /// A JSON file.
 fn read_json(path: &Path) -> Result<serde_json::Value, String> {
-    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let text = crate::input::read_text(path, crate::input::MAX_SCENE_BYTES)
+        .map_err(|e| format!("{}: {e}", path.display()))?;
     serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))
 }
 

@@ -472,9 +472,11 @@ impl SlabTable {
 /// (`fig08_slab_stress.csv`, and `fig13_residual_slab.csv` of a quake).
 pub(crate) fn read_slab_csv(path: &Path) -> Result<Vec<SlabTableRow>, ProfilesError> {
     let path = path.to_path_buf();
-    let text = std::fs::read_to_string(&path).map_err(|source| ProfilesError::Io {
-        path: path.clone(),
-        source,
+    let text = crate::input::read_text(&path, crate::input::MAX_SCENE_BYTES).map_err(|source| {
+        ProfilesError::Io {
+            path: path.clone(),
+            source,
+        }
     })?;
     let mut rows = Vec::new();
     for (i, line) in text.lines().enumerate().skip(1) {

@@ -150,10 +150,11 @@ impl fmt::Display for AccelSummary {
 /// (created if needed).
 pub fn run_file(path: &Path, out_dir: &Path) -> Result<AccelSummary, AccelError> {
     let file = path.to_path_buf();
-    let text = std::fs::read_to_string(path).map_err(|source| AccelError::Read {
-        file: file.clone(),
-        source,
-    })?;
+    let text =
+        crate::input::read_text(path, crate::input::MAX_SCENE_BYTES).map_err(|source| AccelError::Read {
+            file: file.clone(),
+            source,
+        })?;
     let spec = AccelSpecFile::parse(&text).map_err(|message| AccelError::Parse {
         file: file.clone(),
         message,
