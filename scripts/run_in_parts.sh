@@ -16,7 +16,8 @@
 # Writes OUT/parts.csv: part, first stage, last stage begun, wall seconds (from /usr/bin/time), peak
 # resident memory of the largest rank in KiB, exit code. The finished part's summary.json holds
 # the solver counters of the whole run (they are carried in the checkpoint); its results.h5 and
-# figures hold the stages that part ran.
+# figures hold the whole run (each part continues the results published beside the checkpoint
+# it restarts from).
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"

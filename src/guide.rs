@@ -422,7 +422,7 @@
 //! | `cfrd run ... --integration-tol-ratio R` | caps the GP substepping tolerance at R·newton_tol, as `solver.integration_tol_ratio` does, without changing the scene |
 //! | `cfrd run ... --linear-solver iterative\|reduced_amg\|canonical_lu\|distributed_lu` | solves every stage with this linear solver instead of `solver.linear_solver` and the dynamic stages' `linear_solver`, without changing the scene: a long run continues from its checkpoint on another solver (its results then agree with the scene's to the solvers' tolerances, not bit for bit) |
 //! | `cfrd run ... -q` | prints nothing but errors |
-//! | `cfrd run ... --overwrite` | writes into a directory that holds another run's `results.h5`, `checkpoint.h5` or `summary.json` (its old checkpoint is removed first); without it such a directory is refused (exit code 2) unless the run restarts from that directory's own checkpoint. Temporary files of killed runs found there (`.results.h5.partial-<pid>` and the like) are named and removed. One run writes into a directory at a time: a run holds the lock of its `.cfrd.lock` (`flock`, released by the kernel when the run ends or is killed), and a second run into the same directory meanwhile exits 2 naming it (test `two_runs_into_one_output_directory_never_race`) |
+//! | `cfrd run ... --overwrite` | writes into a directory that holds another run's `results.h5`, `checkpoint.h5` or `summary.json` (its old checkpoint is removed first); without it such a directory is refused (exit code 2), and so is a restart from that directory's own checkpoint, which with `--overwrite` continues the results there (the steps before the checkpoint are kept). Temporary files of killed runs found there (`.results.h5.partial-<pid>` and the like) are named and removed. One run writes into a directory at a time: a run holds the lock of its `.cfrd.lock` (`flock`, released by the kernel when the run ends or is killed), and a second run into the same directory meanwhile exits 2 naming it (test `two_runs_into_one_output_directory_never_race`) |
 //! | `cfrd check SCENE` | parses, validates and cross-checks the scene and its mesh without solving; prints the counts of nodes, elements, blocks, fixed DOFs and stages |
 //! | `cfrd schema` | prints the JSON Schema of the scene format |
 //! | `cfrd partition SCENE -n N -o FILE` | METIS partition for N ranks, written to `FILE`; the scene then names it in `partition:` |
@@ -455,7 +455,10 @@
 //! large ones once the run has computed 39 times as long as the last checkpoint and results
 //! copy took, so that writing costs at most 2.5 % of the run ([`crate::io::pacing`]; the fine
 //! seed mesh every few stages), and always after the last stage and at
-//! `--stop-after-stage`. `output: { checkpoint: step }` writes it after
+//! `--stop-after-stage`. With these default checkpoints a dynamic stage also writes one every
+//! 100 of its time steps, counted from the stage's start (`cfrd::run::checkpoints`), so a quake
+//! killed midway loses at most 100 steps. `output: { checkpoint: stage }` asks for the stage
+//! ends only; `output: { checkpoint: step }` writes it after
 //! every converged load step as well, for stages longer than a job may run: a restart then
 //! continues inside the stage. `cfrd run --checkpoint stage|step|none` overrides the scene's
 //! choice without changing the scene, whose hash a restart checks, so a run in parts may switch
@@ -483,12 +486,19 @@
 //! * The checkpoint is written to a temporary file and renamed when complete, so an interrupted
 //!   write never damages the previous one. A checkpoint of another scene or mesh is refused
 //!   (exit 2).
-//! * The restarted `results.h5` holds the stages computed after the restart, so give the
-//!   restart its own `-o`. Its `summary.json` carries the solver counters and the per-stage
-//!   wall times (`stage_seconds`) of the whole run, all parts.
-//! * A staged run publishes its `results.h5` at every stage checkpoint (a complete copy, never a
-//!   half-written file), so a run that is killed keeps the results of the stages up to its
+//! * A run publishes its `results.h5` before every checkpoint (a complete copy, never a
+//!   half-written file), so a run that is killed keeps the results of every step up to its
 //!   checkpoint; a stage that fails leaves those of every stage it completed.
+//! * The restarted run continues those results: its `results.h5` starts as a copy of the
+//!   `results.h5` beside the checkpoint, keeps the steps up to the checkpoint and adds its
+//!   own, numbered and timed as the uninterrupted run's (the fields every `output_every` time
+//!   steps are counted from the stage's start), so its results, figures and tables are those of
+//!   the whole run, and `cfrd compare` against the uninterrupted run needs no `--common`.
+//!   Without such results beside the checkpoint (a checkpoint copied elsewhere, or written by
+//!   an older build) the run says so and its results hold its own steps only. Give the restart
+//!   its own `-o`; a restart into the checkpoint's own directory needs `--overwrite`. Its
+//!   `summary.json` carries the solver counters and the per-stage wall times
+//!   (`stage_seconds`) of the whole run, all parts.
 //!
 //! ## Runs in parts
 //!
@@ -504,7 +514,8 @@
 //! restarts from the newest checkpoint into the next part, and a call after the last stage
 //! says the run has finished. `PART_STAGES=N` ends each part cleanly after N stages
 //! (`--stop-after-stage +N`); without it a part runs until it ends or is killed. Arguments after
-//! `--` go to every part (e.g. `-- --checkpoint step`). `OUT/parts.csv` lists each part's first
+//! `--` go to every part (e.g. `-- --checkpoint step`); the last part's results and figures
+//! are those of the whole run. `OUT/parts.csv` lists each part's first
 //! and last stage, wall time, peak memory of the largest rank and exit code; `OUT/part_<k>.log`
 //! is its log. A part that was killed leaves its half-written results under a temporary name
 //! (`.results.h5.partial-<pid>`); the next call removes it. `cfrd profiles` draws the seed

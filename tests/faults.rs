@@ -357,7 +357,10 @@ fn fill_disk_at_the_end(d: &Path, size: u64) -> (i32, String) {
     assert!(elapsed < Duration::from_secs(60), "{size}: {elapsed:?}");
     assert!(code == 0 || code == 4, "{size}: exit {code}: {msg}");
     // a run that could write nothing removes the directory it created (cfrd::io::run_lock)
-    assert!(out.exists() || code == 4, "{size}: exit 0 without an output directory: {msg}");
+    assert!(
+        out.exists() || code == 4,
+        "{size}: exit 0 without an output directory: {msg}"
+    );
     for entry in std::fs::read_dir(&out).into_iter().flatten().flatten() {
         let name = entry.file_name().to_string_lossy().into_owned();
         if name == cfrd::io::run_lock::LOCK_FILE {

@@ -69,13 +69,29 @@ fn compare(a: &[f64], b: &[f64]) -> (usize, f64) {
     (differing, max)
 }
 
-/// Asserts that every field of the restarted run's steps is bitwise the uninterrupted run's
-/// step of the same stage (`done` stages were completed before the restart).
-fn assert_bitwise(full: &Path, restarted: &Path, done: usize) {
-    for stage in done + 1..=STAGES {
+/// Asserts that every field of every step of the restarted run is bitwise the uninterrupted
+/// run's step of the same stage, and that it holds the stages after the first `missing` ones:
+/// every stage (`missing` = 0) when the results beside its checkpoint were continued, those
+/// after the checkpoint when there were none (a checkpoint copied elsewhere).
+fn assert_bitwise(full: &Path, restarted: &Path, missing: usize) {
+    let steps = |p: &Path| {
+        hdf5::File::open(p)
+            .unwrap()
+            .group("steps")
+            .unwrap()
+            .member_names()
+            .unwrap()
+            .len()
+    };
+    assert_eq!(
+        steps(full),
+        steps(restarted) + missing,
+        "the steps of the two runs"
+    );
+    for stage in missing + 1..=STAGES {
         for field in FIELDS {
             let a = read_f64(full, &format!("/steps/{stage:06}/{field}"));
-            let b = read_f64(restarted, &format!("/steps/{:06}/{field}", stage - done));
+            let b = read_f64(restarted, &format!("/steps/{:06}/{field}", stage - missing));
             let (differing, max) = compare(&a, &b);
             println!(
                 "stage {stage} {field}: {differing} of {} values differ, max |Δ| = {max:.3e}",
@@ -140,6 +156,13 @@ fn restart_after_stage_two_is_bitwise_exact() {
     let lines = |prefix: &str| text(&o).lines().filter(|l| l.starts_with(prefix)).count();
     assert!(lines("  λ = ") >= 2 * (STAGES - 2), "{}", text(&o));
     assert_eq!(lines("  λ = 1.000 after"), STAGES - 2, "{}", text(&o));
+    // a checkpoint copied away from its results: the restart says so, and its results hold
+    // its own stages only
+    assert!(
+        text(&o).contains("no results beside the checkpoint"),
+        "{}",
+        text(&o)
+    );
     assert_bitwise(&d.join("full/results.h5"), &d.join("rest/results.h5"), 2);
     // the restarted run holds the later stages only: `cfrd compare` names the steps the full
     // run holds beyond them and fails, and with `--common` it compares the common ones,
@@ -262,11 +285,12 @@ fn a_killed_run_restarts_from_its_last_checkpoint() {
             "-o",
             "killed",
             "-q",
+            "--overwrite",
             "--restart",
             "killed/checkpoint.h5",
         ],
     );
-    assert_bitwise(&d.join("full/results.h5"), &d.join("killed/results.h5"), done);
+    assert_bitwise(&d.join("full/results.h5"), &d.join("killed/results.h5"), 0);
 }
 
 /// A step checkpoint (`output.checkpoint: step`, written after every converged load step): a
@@ -368,10 +392,8 @@ fn restart_on_one_rank_from_a_two_rank_checkpoint() {
     // relative residual of 1e-8 (the default newton_tol), so they agree to that fraction
     for field in ["displacement", "stress"] {
         let a = read_f64(&d.join("full/results.h5"), &format!("/steps/{STAGES:06}/{field}"));
-        let b = read_f64(
-            &d.join("one/results.h5"),
-            &format!("/steps/{:06}/{field}", STAGES - 2),
-        );
+        // the restart continued the 2-rank results beside its checkpoint: the same numbering
+        let b = read_f64(&d.join("one/results.h5"), &format!("/steps/{STAGES:06}/{field}"));
         let scale = a.iter().map(|v| v.abs()).fold(0.0, f64::max);
         let (_, max) = compare(&a, &b);
         println!("1-rank restart {field}: max |Δ| = {max:.3e} of max |value| {scale:.3e}");
@@ -392,7 +414,7 @@ fn canonical_restart_on_one_rank_is_bitwise_exact() {
     let dir = full_and_stopped_with(&yaml);
     let d = dir.path();
     restart_on_one_rank(d);
-    assert_bitwise(&d.join("full/results.h5"), &d.join("one/results.h5"), 2);
+    assert_bitwise(&d.join("full/results.h5"), &d.join("one/results.h5"), 0);
 }
 
 #[test]
@@ -464,5 +486,132 @@ fn restart_refuses_other_scenes_and_bad_files() {
         assert_eq!(o.status.code(), Some(2), "{extra:?}: {t}");
         assert!(t.contains(expected), "{extra:?}: {t}");
         assert!(!t.contains("panicked"), "{extra:?}: {t}");
+    }
+}
+
+/// The column of [`scene`] with a 3-s quake after its stages (300 time steps, fields every 10):
+/// under the default checkpoints it writes a step checkpoint every 100 time steps.
+fn quake_scene() -> String {
+    let mut s = scene(2150.0, 2);
+    s += "  - name: shake\n    dynamic: { record: record.csv, output_every: 10, hht_alpha: -0.1, \
+          damping: { ratio: 0.05, frequencies: [1.0, 5.0] } }\n";
+    s
+}
+
+/// Where a checkpoint left the run: completed stages and, inside the stage in progress, its
+/// converged steps (`None` for a stage checkpoint).
+fn checkpoint_point(ckpt: &Path) -> Option<(u64, Option<f64>)> {
+    let f = hdf5::File::open(ckpt).ok()?;
+    let done = f
+        .group("checkpoint")
+        .ok()?
+        .attr("stages_done")
+        .ok()?
+        .read_scalar::<u64>()
+        .ok()?;
+    let steps = match f.dataset("checkpoint/load_path") {
+        Ok(ds) => Some(ds.read_raw::<f64>().ok()?[3]),
+        Err(_) => None,
+    };
+    Some((done, steps))
+}
+
+/// A point of a run, as [`checkpoint_point`] gives it.
+type Point = (u64, Option<f64>);
+
+/// Starts `col.yaml` on 2 ranks into `out` and SIGKILLs one of its ranks as soon as it has
+/// written a checkpoint that `reached` accepts (checked at every new checkpoint file); returns
+/// that checkpoint's point once the run has ended.
+fn kill_one_rank_at(d: &Path, out: &str, reached: &dyn Fn(Point) -> bool) -> Point {
+    let mut child = cfrd_mpi_spawn(2, d, &["run", "col.yaml", "-o", out, "-q"]);
+    let ckpt = d.join(out).join("checkpoint.h5");
+    let t0 = Instant::now();
+    let mut last = None;
+    let point = loop {
+        assert!(child.try_wait().unwrap().is_none(), "{out}: the run ended first");
+        assert!(
+            t0.elapsed().as_secs() < 240,
+            "{out}: no such checkpoint after 240 s"
+        );
+        let inode = std::fs::metadata(&ckpt)
+            .ok()
+            .map(|m| std::os::unix::fs::MetadataExt::ino(&m));
+        if inode.is_some() && inode != last {
+            last = inode;
+            if let Some(p) = checkpoint_point(&ckpt).filter(|&p| reached(p)) {
+                break p;
+            }
+        }
+        std::thread::sleep(std::time::Duration::from_millis(1));
+    };
+    let rank = *process_tree(child.id()).last().expect("a rank");
+    let killed = std::process::Command::new("kill")
+        .args(["-KILL", &rank.to_string()])
+        .status();
+    assert!(killed.unwrap().success());
+    assert!(
+        !child.wait().unwrap().success(),
+        "{out}: the run was killed, not finished"
+    );
+    point
+}
+
+/// A 2-rank quake killed (SIGKILL of one rank) after a stage checkpoint of its static stages
+/// and after its step checkpoints at 100 and 200 time steps, each restarted into its own directory:
+/// every restarted run holds the steps of the uninterrupted run, numbered and timed alike, and
+/// `cfrd compare --tolerance 0` (without `--common`) finds them bitwise equal; the killed runs'
+/// own results, which lack the steps after their checkpoints, fail the comparison (exit 1).
+#[test]
+fn a_quake_killed_anywhere_restarts_to_the_same_steps_bit_for_bit() {
+    let dir = tempdir();
+    let d = dir.path();
+    std::fs::write(d.join("col.yaml"), quake_scene()).unwrap();
+    let mut csv = String::from("t,a_x,a_y,a_z\n");
+    for i in 0..=300 {
+        let t = f64::from(i) * 0.01;
+        let a = 2.0 * (2.0 * std::f64::consts::PI * 2.0 * t).sin();
+        csv += &format!("{t},{a},0,{}\n", 0.5 * a);
+    }
+    std::fs::write(d.join("record.csv"), csv).unwrap();
+    run_ok(2, d, &["run", "col.yaml", "-o", "full", "-q"]);
+    let n_steps = |p: &str| {
+        let f = hdf5::File::open(d.join(p).join("results.h5")).unwrap();
+        f.group("steps").unwrap().member_names().unwrap().len()
+    };
+    // the 4 stages and the quake's fields every 10 of its 300 steps (its end among them)
+    assert_eq!(n_steps("full"), STAGES + 30);
+    let quake = STAGES as u64;
+    let points: [(&str, &dyn Fn(Point) -> bool); 3] = [
+        ("in the static stages", &|(done, steps)| {
+            done < quake && steps.is_none()
+        }),
+        ("after 100 quake steps", &|(done, steps)| {
+            done == quake && steps >= Some(100.0)
+        }),
+        ("after 200 quake steps", &|(done, steps)| {
+            done == quake && steps >= Some(200.0)
+        }),
+    ];
+    for (k, (where_, reached)) in points.into_iter().enumerate() {
+        let (killed, rest) = (format!("killed_{k}"), format!("rest_{k}"));
+        let point = kill_one_rank_at(d, &killed, reached);
+        println!("{killed}: killed {where_}: checkpoint at {point:?}");
+        let ckpt = d.join(&killed).join("checkpoint.h5");
+        let restart = ckpt.to_str().unwrap().to_string();
+        run_ok(
+            2,
+            d,
+            &["run", "col.yaml", "-o", &rest, "-q", "--restart", &restart],
+        );
+        assert_eq!(n_steps(&rest), n_steps("full"), "{rest}");
+        let o = cfrd(d, &["compare", "full", &rest, "--tolerance", "0"]);
+        assert!(o.status.success(), "{rest}: {}", text(&o));
+        assert!(
+            text(&o).contains(&format!("compared {} step(s) held by both runs", n_steps("full"))),
+            "{}",
+            text(&o)
+        );
+        let o = cfrd(d, &["compare", "full", &killed]);
+        assert_eq!(o.status.code(), Some(1), "{killed}: {}", text(&o));
     }
 }

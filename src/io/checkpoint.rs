@@ -48,9 +48,10 @@
 //!   report               u8  [len]              JSON of the load-step, Newton and KSP counters
 //!                                               ([`SolveReport`] without timings and residuals)
 //!   (step checkpoints only, `output.checkpoint: step`:)
-//!   load_path            f64 [3]                time reached in the stage in progress (λ of a
+//!   load_path            f64 [4]                time reached in the stage in progress (λ of a
 //!                                               static stage, s of a dynamic one), the next
-//!                                               increment, converged steps since it changed
+//!                                               increment, converged steps since it changed,
+//!                                               converged steps since the stage's start
 //!   u_stage_start        f64 [n_nodes, 3]       displacement at the start of that stage (m)
 //!   node_was_active      i64 [n_nodes]          1 if the node was placed before that stage
 //!   (step checkpoints of a dynamic stage only:)
@@ -81,7 +82,7 @@ use crate::scene::resolved::fnv1a;
 use crate::scene::Scene;
 use crate::solver::discretization::Discretization;
 use crate::solver::integrator::Rates;
-use crate::solver::{Problem, ProblemState, SolveReport, StageProgress, StepControl};
+use crate::solver::{Problem, ProblemState, Resumed, SolveReport, StageProgress, StepControl};
 use mpi::topology::SimpleCommunicator;
 use mpi::traits::{Communicator, CommunicatorCollectives};
 use std::path::Path;
@@ -223,7 +224,12 @@ fn write_progress(
     file.write_table("/checkpoint/u_stage_start", node_plan, 3, &p.u_stage_start)?;
     let was = flags(p.node_was_active.iter().copied());
     file.write_table("/checkpoint/node_was_active", node_plan, 1, &was)?;
-    let path = [p.path.t, p.path.dt, f64::from(p.path.streak)];
+    let path = [
+        p.path.t,
+        p.path.dt,
+        f64::from(p.path.streak),
+        f64::from(p.path.steps),
+    ];
     write_replicated(file, "/checkpoint/load_path", &path)?;
     if let Some(r) = &p.rates {
         file.write_table("/checkpoint/velocity", node_plan, 3, &r.velocity)?;
@@ -614,11 +620,11 @@ fn stage_progress(
         rates,
         start_states,
     } = p;
-    let fits = load_path.len() == 3
+    let count = |v: f64| v >= 0.0 && v.fract() == 0.0 && v <= f64::from(u32::MAX);
+    let fits = (load_path.len() == 3 || load_path.len() == 4 && count(load_path[3]))
         && (0.0..stage.t_end()).contains(&load_path[0])
         && load_path[1] > 0.0
-        && load_path[2] >= 0.0
-        && load_path[2].fract() == 0.0
+        && count(load_path[2])
         && was.len() == nn;
     if !fits {
         return Err(bad("the stored load path of the stage in progress is not valid"));
@@ -638,9 +644,7 @@ fn stage_progress(
     Ok(StageProgress {
         rates,
         path: StepControl::resumed(
-            load_path[0],
-            load_path[1],
-            load_path[2] as u32,
+            resumed_at(&load_path, stage),
             stage.t_end(),
             stage.load_steps,
             stage.step_growth,
@@ -652,6 +656,20 @@ fn stage_progress(
             None => None,
         },
     })
+}
+
+/// Where the stored load path `p` (checked) left the stage in progress `stage`. A checkpoint
+/// written before the stage's step count was stored (3 entries) counts the nominal steps to
+/// the time reached, which is the count unless the stage had cut-backs before it.
+fn resumed_at(p: &[f64], stage: &crate::scene::Stage) -> Resumed {
+    let nominal = stage.t_end() / f64::from(stage.load_steps.max(1));
+    let steps = p.get(3).copied().unwrap_or_else(|| (p[0] / nominal).round());
+    Resumed {
+        t: p[0],
+        dt: p[1],
+        streak: p[2] as u32,
+        steps: steps as u32,
+    }
 }
 
 /// Reads a checkpoint and restores `problem` and the counters in `report` from it; returns the

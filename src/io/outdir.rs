@@ -1,7 +1,7 @@
 //! The output directory of `cfrd run`, checked before the run starts: a directory holding
-//! another run's results is not written over without `--overwrite` (or a restart from that
-//! directory's own checkpoint), so no run's data is lost by accident and no run leaves a
-//! checkpoint of another scene beside its results; temporary files of killed runs are named
+//! another run's results is not written over without `--overwrite` (a restart from that
+//! directory's own checkpoint included), so no run's data is lost by accident and no run leaves
+//! a checkpoint of another scene beside its results; temporary files of killed runs are named
 //! and removed.
 
 use crate::parallel::any_error;
@@ -58,8 +58,10 @@ pub fn prepare_output_dir_collective(
 /// Checks the output directory `dir` of a run (restarting from `restart`, if any) and returns
 /// notes of what was removed:
 /// - a directory holding [`RUN_FILES`] is refused, naming them, unless `overwrite` (the old
-///   `checkpoint.h5` is then removed first, so that it cannot outlive the new results) or the
-///   run restarts from `dir`'s own `checkpoint.h5`;
+///   `checkpoint.h5` is then removed first, so that it cannot outlive the new results, unless
+///   the run restarts from it);
+/// - a restart from `dir`'s own `checkpoint.h5` is refused without `overwrite` (with it, the
+///   run continues the results there: `run::results::continue_results`);
 /// - a temporary file of a run whose process is alive is refused (another run writes there);
 ///   those of runs that no longer exist are removed.
 pub fn prepare_output_dir(
@@ -77,9 +79,20 @@ pub fn prepare_output_dir(
     let present: Vec<&str> = RUN_FILES.into_iter().filter(|f| dir.join(f).exists()).collect();
     let ckpt = dir.join("checkpoint.h5");
     let restart_here = restart.is_some_and(|r| same_file(r, &ckpt));
-    if !present.is_empty() && !overwrite && !restart_here {
+    if restart_here && !overwrite {
+        return Err(format!(
+            "--restart {}: the run would continue in the directory of its own checkpoint, \
+             replacing its results with the continued ones; pass --overwrite to do so (the \
+             steps before the checkpoint are kept), or choose another directory with -o",
+            ckpt.display()
+        ));
+    }
+    if !present.is_empty() && !overwrite {
         let resume = if ckpt.exists() {
-            format!(", or continue that run with --restart {}", ckpt.display())
+            format!(
+                ", or continue that run into another directory with --restart {}",
+                ckpt.display()
+            )
         } else {
             String::new()
         };

@@ -1,7 +1,12 @@
 //! Checkpoint pacing: when a run writes `checkpoint.h5`. Stage checkpoints come at the end of a
 //! stage when the pacing says the run has computed long enough since the last write
 //! ([`crate::io::pacing`]), and always after the stage a run ends with; step checkpoints
-//! (`--checkpoint step`) after every N-th converged step, unpaced.
+//! (`--checkpoint step`) after every N-th converged step, unpaced. With the default checkpoints
+//! of a staged scene (`output.checkpoint` left out) a dynamic stage also writes a step
+//! checkpoint every [`DYNAMIC_STEPS_PER_CHECKPOINT`] of its time steps, counted from the
+//! stage's start, so that a long quake killed midway loses at most that many steps. Every
+//! step checkpoint follows the publication of the results written so far, so the results a
+//! restart finds beside its checkpoint hold every step before it.
 
 use super::observer::{Halt, Observer, Run, StepAt};
 use super::options::{input, io_failure, RunFailure, RunOptions, StopAfter};
@@ -16,6 +21,12 @@ use crate::solver::StepControl;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+/// Time steps of a dynamic stage between two of its step checkpoints under the default
+/// checkpoints: on the fine seed quake some 6 min of computing against a few seconds of
+/// writing; a count of steps, not a time, so that where checkpoints fall (each starts a fresh
+/// preconditioner) and thus the results do not depend on the machine's speed.
+pub const DYNAMIC_STEPS_PER_CHECKPOINT: u32 = 100;
+
 /// What the run was asked about checkpoints, and the pacing of its stage-end writes.
 pub struct CheckpointPacer {
     /// Whether the run writes checkpoints at all.
@@ -24,6 +35,9 @@ pub struct CheckpointPacer {
     steps: bool,
     /// Step checkpoints after every `every`-th converged step of the run.
     every: u32,
+    /// Step checkpoints inside dynamic stages after every this many of their steps (the
+    /// default checkpoints).
+    dynamic_every: Option<u32>,
     /// The stage (1-based) after which the run ends on `--stop-after-stage`.
     stop_after: Option<usize>,
     path: PathBuf,
@@ -67,6 +81,7 @@ impl CheckpointPacer {
             enabled,
             steps: mode == Some(CheckpointMode::Step),
             every: opts.checkpoint_every.unwrap_or(1).max(1),
+            dynamic_every: (enabled && mode.is_none()).then_some(DYNAMIC_STEPS_PER_CHECKPOINT),
             stop_after,
             path: out_dir.join(CHECKPOINT_FILE),
             writes: StageEndWrites::new(),
@@ -99,8 +114,15 @@ impl CheckpointPacer {
 
 impl Observer for CheckpointPacer {
     fn on_step(&mut self, run: &mut Run<'_, '_>, step: &StepAt<'_>) -> Result<(), Halt> {
-        if self.steps && !step.path.done() && run.report.steps.is_multiple_of(self.every) {
+        let asked = self.steps && run.report.steps.is_multiple_of(self.every);
+        let dynamic = step.stage.stage.dynamic.is_some()
+            && self
+                .dynamic_every
+                .is_some_and(|n| step.path.steps.is_multiple_of(n));
+        if (asked || dynamic) && !step.path.done() {
             run.timer.start(Phase::Output);
+            // the results before the checkpoint are published with it (module docs)
+            run.publish_results()?;
             self.write(run, Some(*step.path))?;
             run.timer.stop();
             // the restart starts with a fresh preconditioner here; so does this run

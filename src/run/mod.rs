@@ -100,7 +100,17 @@ pub fn run_scene(
     let mut pacer = checkpoints::CheckpointPacer::new(scene, opts, first_stage, &out_dir)?;
     timer.start(Phase::Output);
     let results_path = out_dir.join("results.h5");
-    let results = results::create_results(world, scene, &problem, &results_path)?;
+    let results = match &opts.restart {
+        Some(checkpoint) => {
+            let at = results::RestartPoint {
+                checkpoint,
+                stages_done: first_stage,
+                within: resume.as_ref(),
+            };
+            results::continue_results(world, scene, &problem, &results_path, &at, !verbose)?
+        }
+        None => results::create_results(world, scene, &problem, &results_path)?,
+    };
     timer.stop();
     let plan = pacer.plan(first_stage, resume, verbose);
     let mut summary = summary::SummaryWriter {

@@ -71,7 +71,8 @@ pub struct StepAt<'s> {
     pub stage: &'s StageAt<'s>,
     /// Where the stage stands (time or load factor after the step).
     pub path: &'s StepControl,
-    /// Steps converged in this stage by this run.
+    /// Steps converged in this stage since its start (with those before the step checkpoint a
+    /// restart continues from).
     pub steps_in_stage: u32,
     /// Wall-clock seconds since the stage began.
     pub stage_seconds: f64,

@@ -8,6 +8,7 @@ use crate::io::summary::Phase;
 use crate::parallel::any_error;
 use crate::scene::{Scene, Stage};
 use crate::solver::{LocalResults, Problem};
+use mpi::topology::Communicator;
 use mpi::topology::SimpleCommunicator;
 use std::path::Path;
 
@@ -23,6 +24,71 @@ pub fn create_results(
         Ok(f)
     });
     any_error(world, created).map_err(|m| io_failure("writing results", m))
+}
+
+/// Where a restart continues the schedule: after `stages_done` stages, inside the next one at
+/// `within` (a step checkpoint).
+pub struct RestartPoint<'a> {
+    /// The checkpoint the run restarts from.
+    pub checkpoint: &'a Path,
+    /// Completed stages.
+    pub stages_done: usize,
+    /// Where the stage in progress stands (step checkpoints).
+    pub within: Option<&'a crate::solver::StepControl>,
+}
+
+/// Opens `results.h5` at `path` for a run restarted at `at`: it continues the results
+/// published beside the checkpoint (`results.h5` in the checkpoint's directory, which holds
+/// every step written before the checkpoint) with their steps up to the checkpoint's point, so
+/// the restarted run's results hold every step of the uninterrupted run. When there are none,
+/// or they do not reach the checkpoint (written by another run or an older build), the run's
+/// results hold its own steps only, and rank 0 says so unless `quiet`. Collective.
+pub fn continue_results(
+    world: &SimpleCommunicator,
+    scene: &Scene,
+    problem: &Problem,
+    path: &Path,
+    at: &RestartPoint<'_>,
+    quiet: bool,
+) -> Result<ResultsFile, RunFailure> {
+    let prior = at.checkpoint.with_file_name("results.h5");
+    let limit = at.stages_done as f64 + at.within.map_or(0.0, |p| p.t / p.t_end);
+    let keep = |info: &StepInfo| info.time <= limit * (1.0 + 1e-12);
+    let reaches = match world.rank() {
+        0 => reaches(&prior, at.stages_done),
+        _ => Ok(()),
+    };
+    if let Err(why) = any_error(world, reaches) {
+        if !quiet {
+            eprintln!("note: {why}: this run's results.h5 holds the steps it computes only");
+        }
+        return create_results(world, scene, problem, path);
+    }
+    let mesh = owned_mesh(scene, problem);
+    let continued = ResultsFile::continuing(world, path, &scene.file.name, &prior, &mesh, &keep);
+    any_error(world, continued).map_err(|m| io_failure("continuing the results", m))
+}
+
+/// Whether the results file `prior` holds the end of stage `stages_done` (the last step a
+/// checkpoint after it follows), or says why not. One rank.
+fn reaches(prior: &Path, stages_done: usize) -> Result<(), String> {
+    let shown = prior.display();
+    if !prior.exists() {
+        return Err(format!("no results beside the checkpoint ({shown})"));
+    }
+    let file = crate::io::results_reader::open(prior)?;
+    let names = crate::io::results_reader::step_names(&file, prior)?;
+    let end = stages_done as f64;
+    let found = names.iter().any(|n| {
+        file.group(&format!("/steps/{n}"))
+            .and_then(|g| g.attr("time"))
+            .and_then(|a| a.read_scalar::<f64>())
+            .is_ok_and(|t| t == end)
+    });
+    match found || stages_done == 0 {
+        true => Ok(()),
+        false => Err(format!("{shown} does not reach the end of stage {stages_done}")),
+    }
 }
 
 /// Decides which states go into the run's results file: every stage's end and, inside a

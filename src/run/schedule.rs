@@ -108,8 +108,9 @@ fn run_stages(
 }
 
 /// The steps of one stage, after telling the observers it starts. Returns where the stage
-/// stands, the steps this run converged in it, and whether its steps (and the observers)
-/// went well; `Err` ends the run.
+/// stands, its converged steps since its start (also those before the step checkpoint a
+/// restart continues from), and whether its steps (and the observers) went well; `Err` ends
+/// the run.
 fn run_steps(
     run: &mut Run<'_, '_>,
     observers: &mut [&mut dyn Observer],
@@ -119,22 +120,20 @@ fn run_steps(
 ) -> Result<(StepControl, u32, Result<(), crate::solver::SolveError>), RunFailure> {
     let mut solved = notify(observers, |o| o.on_stage_start(run, at))?;
     let max_cutbacks = run.scene.file.solver.max_cutbacks;
-    let mut steps_in_stage = 0u32;
     while solved.is_ok() && !path.done() {
         solved = run.problem.advance(&mut path, max_cutbacks, run.report);
         if solved.is_err() {
             break;
         }
-        steps_in_stage += 1;
         let step = StepAt {
             stage: at,
             path: &path,
-            steps_in_stage,
+            steps_in_stage: path.steps,
             stage_seconds: started.elapsed().as_secs_f64(),
         };
         solved = notify(observers, |o| o.on_step(run, &step))?;
     }
-    Ok((path, steps_in_stage, solved))
+    Ok((path, path.steps, solved))
 }
 
 /// Calls `event` on every observer in order until one halts: a solver halt is the stage's

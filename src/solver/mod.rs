@@ -74,4 +74,4 @@ pub use report::{InterfaceCounts, LocalResults, NodeMotion, SolveReport, StageSe
 #[cfg(feature = "native")]
 pub use state::{ProblemState, StageProgress};
 #[cfg(feature = "native")]
-pub use step_control::StepControl;
+pub use step_control::{Resumed, StepControl};

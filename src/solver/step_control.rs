@@ -59,7 +59,20 @@ pub const EASY_STEP_ITERATIONS: u32 = 1;
 /// nominal one.
 pub const HARD_STEP_ITERATIONS: u32 = 3;
 
-/// Where the stepping of a stage stands. Step checkpoints store `t`, `dt` and `streak`;
+/// Where a step checkpoint left the stepping of a stage ([`StepControl::resumed`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Resumed {
+    /// Time reached in the stage.
+    pub t: f64,
+    /// The next increment.
+    pub dt: f64,
+    /// Converged steps since the increment last changed.
+    pub streak: u32,
+    /// Converged steps since the stage's start.
+    pub steps: u32,
+}
+
+/// Where the stepping of a stage stands. Step checkpoints store `t`, `dt`, `streak` and `steps`;
 /// `t_end`, `dt_nominal` and `dt_max` follow from the scene.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct StepControl {
@@ -69,6 +82,10 @@ pub struct StepControl {
     pub dt: f64,
     /// Converged steps since the increment last changed (it doubles after two).
     pub streak: u32,
+    /// Converged steps of the stage since its start (carried by step checkpoints, so that
+    /// what is counted in steps, such as the results every `output_every` time steps, does
+    /// not depend on where a run was restarted).
+    pub steps: u32,
     /// The stage's end time.
     pub t_end: f64,
     /// The stage's nominal step, t_end over its load (time) steps: where a cut-back grows back to.
@@ -91,19 +108,22 @@ impl StepControl {
             t: 0.0,
             dt,
             streak: 0,
+            steps: 0,
             t_end,
             dt_nominal: dt,
             dt_max: dt * growth.max(1) as f64,
         }
     }
 
-    /// A stage resumed at `t` with increment `dt` and success count `streak` (a step
-    /// checkpoint), of `n_steps` nominal steps to `t_end` growing to `growth` times.
-    pub fn resumed(t: f64, dt: f64, streak: u32, t_end: f64, n_steps: u32, growth: u32) -> Self {
+    /// A stage resumed at `t` with increment `dt`, success count `streak` and `steps`
+    /// converged steps (a step checkpoint), of `n_steps` nominal steps to `t_end` growing to
+    /// `growth` times.
+    pub fn resumed(at: Resumed, t_end: f64, n_steps: u32, growth: u32) -> Self {
         StepControl {
-            t,
-            dt,
-            streak,
+            t: at.t,
+            dt: at.dt,
+            streak: at.streak,
+            steps: at.steps,
             ..StepControl::growing(t_end, n_steps, growth)
         }
     }
@@ -134,6 +154,7 @@ impl StepControl {
     pub fn accept(&mut self, t1: f64, iterations: u32) {
         self.t = t1;
         self.streak += 1;
+        self.steps += 1;
         if self.dt < self.dt_nominal {
             if self.streak >= 2 {
                 self.dt = (2.0 * self.dt).min(self.dt_nominal);
@@ -258,8 +279,9 @@ mod tests {
         for (k, &n) in iterations.iter().enumerate() {
             if k == 3 {
                 // what a step checkpoint stores, and what a restart rebuilds from it
-                let (t, dt, streak) = (full.t, full.dt, full.streak);
-                let resumed = StepControl::resumed(t, dt, streak, 1.0, 16, 4);
+                let (t, dt, streak, steps) = (full.t, full.dt, full.streak, full.steps);
+                let resumed = StepControl::resumed(Resumed { t, dt, streak, steps }, 1.0, 16, 4);
+                assert_eq!(resumed.steps, 3);
                 assert_eq!(resumed, full, "resumed with its growth");
             }
             let t1 = full.target();

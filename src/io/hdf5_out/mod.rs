@@ -22,6 +22,7 @@
 //! same `Ok`/`Err` outcome ([`super::error::agree`]).
 
 mod attrs;
+mod carry;
 mod checksum;
 mod mesh;
 mod names;

@@ -84,8 +84,12 @@ impl ResultsFile {
     /// (under a second temporary name that is renamed over the target, so the target is always
     /// a complete file), has rank 0 write the XDMF file, and reopens the temporary file to
     /// continue writing. A run killed later leaves at the target the steps up to the last
-    /// publish. Collective.
+    /// publish. Nothing is done when no step was written since the last publish (the target
+    /// holds them all already). Collective.
     pub fn publish(&mut self) -> Result<(), IoError> {
+        if self.published_steps == Some(self.steps.len()) {
+            return Ok(());
+        }
         let _watch = guard::watch_sized(
             &format!("publishing {}", self.final_path.display()),
             file_size(&self.temp_path),
@@ -108,6 +112,7 @@ impl ResultsFile {
             .open_rw(&self.temp_path)
             .map_err(|e| IoError::hdf5(format!("reopening {}", self.temp_path.display()), e));
         self.file = Some(agree(&self.comm, reopened)?);
+        self.published_steps = Some(self.steps.len());
         Ok(())
     }
 

@@ -32,6 +32,8 @@ pub struct ResultsFile {
     pub(super) element_plan: Option<Redistribution>,
     pub(super) steps: Vec<StepRecord>,
     pub(super) published: bool,
+    /// Steps at the target path after the last [`ResultsFile::publish`] (`None` before one).
+    pub(super) published_steps: Option<usize>,
     /// A collective HDF5 operation failed: the file is not closed but abandoned
     /// ([`guard::abandon`]), since its close could hang.
     pub(super) failed: std::cell::Cell<bool>,
@@ -83,6 +85,7 @@ impl ResultsFile {
             element_plan: None,
             steps: Vec::new(),
             published: false,
+            published_steps: None,
             failed: std::cell::Cell::new(false),
             regions: Vec::new(),
             seal: false,
