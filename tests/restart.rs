@@ -615,3 +615,28 @@ fn a_quake_killed_anywhere_restarts_to_the_same_steps_bit_for_bit() {
         assert_eq!(o.status.code(), Some(1), "{killed}: {}", text(&o));
     }
 }
+
+/// A restart into its own checkpoint's directory is refused without `--overwrite` (exit 2,
+/// nothing there touched); with it the run continues the results in place and keeps the
+/// stages before the checkpoint.
+#[test]
+fn a_restart_into_its_own_directory_needs_overwrite_and_keeps_the_earlier_results() {
+    let dir = full_and_stopped_after_stage_two();
+    let d = dir.path();
+    let before = std::fs::read(d.join("part/results.h5")).unwrap();
+    let args = [
+        "run",
+        "col.yaml",
+        "-o",
+        "part",
+        "-q",
+        "--restart",
+        "part/checkpoint.h5",
+    ];
+    let o = cfrd_mpi(2, d, &args);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("pass --overwrite"), "{}", text(&o));
+    assert_eq!(std::fs::read(d.join("part/results.h5")).unwrap(), before);
+    run_ok(2, d, &[&args[..], &["--overwrite"]].concat());
+    assert_bitwise(&d.join("full/results.h5"), &d.join("part/results.h5"), 0);
+}
