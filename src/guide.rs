@@ -202,6 +202,14 @@
 //!   # line_search: secant             # default full_step_first
 //! ```
 //!
+//! The record is a CSV file of the three components (above), or one PEER NGA AT2 file per
+//! component, `record: { x: RSN6_X.AT2, y: RSN6_Y.AT2, z: RSN6_UP.AT2 }`, paths relative to the
+//! scene's folder: each file's header gives its units (it must say `UNITS OF G`; the values
+//! are converted with g = 9.80665 m/s²) and its `DT`. A component left out is zero, at least one
+//! is given; the given ones must share their DT (to 1e-9 relative), or the scene is refused
+//! naming the file and the key (`…record.y`); shorter components are padded with zeros to the
+//! longest. The run's log states both at the stage's start.
+//!
 //! A dynamic stage has its own `linear_solver` and, if given, its own `newton_tol`; the static
 //! stages' `solver.linear_solver` and `solver.newton_tol` do not reach it. The seed quake
 //! scenes keep their static study's solver for the construction and impoundment and solve the

@@ -1,4 +1,5 @@
-//! Progress on rank 0 (`-v`): a line at every stage's start, and at every converged step a bar
+//! Progress on rank 0 (`-v`): a line at every stage's start (with a dynamic stage's notes on its
+//! record, [`crate::scene::dynamic::DynamicStage::notes`]), and at every converged step a bar
 //! on a terminal or a line in a log (nohup, a cluster job's output).
 
 use super::observer::{Halt, Observer, Run, RunEnd, StageAt, StepAt};
@@ -41,6 +42,9 @@ impl Observer for Progress {
                 stage.name,
                 stage.load_steps
             );
+            for note in stage.dynamic.iter().flat_map(|d| &d.notes) {
+                eprintln!("  {note}");
+            }
         }
         self.bar = progress_bar(self.show, stage.load_steps as u64);
         Ok(())

@@ -7,6 +7,8 @@
 //!     loads: { hydrostatic: [ { faces: upstream, level: 2840.0 } ] }
 //!     dynamic:
 //!       record: ../accel/seed_quake.csv     # t,a_x,a_y,a_z in m/s² (cfrd accel writes it)
+//!       # or one PEER NGA AT2 file per component (g; a component left out is zero):
+//!       # record: { x: RSN6_X.AT2, y: RSN6_Y.AT2, z: RSN6_UP.AT2 }
 //!       duration: 20.0                      # s, default the record's length
 //!       dt: 0.01                            # s, default the record's sample interval
 //!       damping: { ratio: 0.05, frequencies: [1.0, 5.0] }   # Rayleigh on M and K₀
@@ -29,21 +31,29 @@
 //! whole vector, so memory and work per rank fall with the rank count. `canonical_lu` gathers
 //! the Jacobian onto every rank and gives the same bits at any rank count; `iterative` and
 //! `reduced_amg` are the static solvers of the same names.
+//!
+//! A stage gets what it asks, or the scene is refused (exit 2, naming the stage and the key),
+//! or rank 0's log states the rule at the stage's start ([`DynamicStage::notes`]):
+//! - AT2 components left out are zero, shorter ones padded with zeros to the longest (stated;
+//!   [`super::record`]).
 
 use super::error::SceneError;
+use super::record::RecordSpec;
 use super::schema::{LineSearch, LinearSolver, Predictor};
 use crate::seismic::Accelerogram;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// How a stage is integrated in time (scene key `stages[k].dynamic`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct DynamicSpec {
-    /// Ground acceleration record: CSV with the header `t,a_x,a_y,a_z` (m/s², the scene's axes
-    /// x stream, y dam axis, z up), relative to the scene's folder.
-    pub record: PathBuf,
+    /// Ground acceleration record, relative to the scene's folder: a CSV file with the header
+    /// `t,a_x,a_y,a_z` (m/s², the scene's axes x stream, y dam axis, z up), or one PEER NGA AT2
+    /// file per component, `{ x: FILE.AT2, y: FILE.AT2, z: FILE.AT2 }` (in g; a component left
+    /// out is zero; [`super::record`]).
+    pub record: RecordSpec,
     /// Factor on all three components of the record (default 1).
     #[serde(default = "one")]
     pub scale: f64,
@@ -216,6 +226,9 @@ pub struct DynamicStage {
     pub linear_solver: LinearSolver,
     /// Newton's tolerance in this stage, if not the scene's.
     pub newton_tol: Option<f64>,
+    /// What rank 0's log states at the stage's start about the ground motion, one line each:
+    /// how the components of an AT2 record were completed.
+    pub notes: Vec<String>,
 }
 
 /// Largest number of time steps of one dynamic stage.
@@ -229,8 +242,10 @@ pub fn resolve(
     invalid: &dyn Fn(&str, String) -> SceneError,
 ) -> Result<DynamicStage, SceneError> {
     let inv = |key: &str, message: String| invalid(&format!("{path}.{key}"), message);
-    let file = base.join(&spec.record);
-    let record = Accelerogram::read_csv(&file).map_err(|e| inv("record", e.to_string()))?;
+    let super::record::Record {
+        accelerogram: record,
+        notes,
+    } = spec.record.read(base, &inv)?;
     if !(spec.scale.is_finite() && spec.scale > 0.0) {
         return Err(inv(
             "scale",
@@ -277,6 +292,7 @@ pub fn resolve(
         line_search: spec.line_search,
         linear_solver: spec.linear_solver,
         newton_tol: spec.newton_tol,
+        notes,
     })
 }
 
