@@ -192,7 +192,7 @@
 //! earthquake:
 //!   record: ../accel/seed_quake.csv   # t,a_x,a_y,a_z in m/s², our axes (cfrd accel writes it)
 //!   duration: 20.0                    # s (default: the record's length)
-//!   dt: 0.01                          # s (default: the record's sample interval)
+//!   dt: 0.01                          # s (default: the record's sample interval), divides duration
 //!   damping: { ratio: 0.05, frequencies: [1.0, 5.0] }   # C = a_M·M + a_K·K₀ (optional)
 //!   output_every: 10                  # fields every 10 steps (default: the stage's end only)
 //!   hht_alpha: -0.1                   # HHT-α instead of average acceleration (α ∈ [−1/3, 0])
@@ -209,6 +209,12 @@
 //! is given; the given ones must share their DT (to 1e-9 relative), or the scene is refused
 //! naming the file and the key (`…record.y`); shorter components are padded with zeros to the
 //! longest. The run's log states both at the stage's start.
+//!
+//! A dynamic stage runs what it asks, or it is refused (exit 2, naming the stage and the key),
+//! or rank 0's log states the rule at the stage's start:
+//!
+//! * `dt` must divide `duration` (to 1e-9 relative): `dt: 0.21` over `duration: 0.3` is refused
+//!   with the nearest `dt` that does, 0.15 s.
 //!
 //! A dynamic stage has its own `linear_solver` and, if given, its own `newton_tol`; the static
 //! stages' `solver.linear_solver` and `solver.newton_tol` do not reach it. The seed quake

@@ -320,6 +320,35 @@ fn quake_scene(keys: &str) -> String {
     format!("{GOOD}stages:\n  - {{ name: place, activate: [layer_1] }}\n  - {{ name: shake, {keys} }}\n")
 }
 
+/// A record of 0.03 s at Δt = 0.01 s (`r.csv`).
+fn short_record() -> Vec<(&'static str, String)> {
+    vec![(
+        "r.csv",
+        "t,a_x,a_y,a_z\n0,0,0,0\n0.01,0.1,0,0\n0.02,0,0,0\n0.03,0,0,0\n".into(),
+    )]
+}
+
+/// Issue 56: `dt: 0.21` over `duration: 0.3` ran one step of 0.3 s; a `dt` that does not
+/// divide the duration is now refused naming dt, the duration and the nearest dt that does
+/// (here 0.015 s, two steps), also when dt is the record's sample interval.
+#[test]
+fn a_dt_that_does_not_divide_the_duration_exits_2_naming_the_nearest_that_does() {
+    assert_exits_2(
+        "dt 0.021 over 0.03 s",
+        &quake_scene("dynamic: { record: r.csv, dt: 0.021 }"),
+        &short_record(),
+        "stages[1].dynamic.dt: 0.021 s does not divide the duration 0.03 s (1.4286 steps): \
+         give `dt: 0.015` (2 steps)",
+    );
+    assert_exits_2(
+        "the record's dt over 0.025 s",
+        &quake_scene("dynamic: { record: r.csv, duration: 0.025 }"),
+        &short_record(),
+        "stages[1].dynamic.dt: the record's sample interval 0.01 s (`dt` not given) does not \
+         divide the duration 0.025 s",
+    );
+}
+
 /// A PEER AT2 component of `npts` values of 0.01 g at `dt` (s, as the header writes it).
 fn at2(dt: &str, npts: usize) -> String {
     let values = vec![".1000000E-01"; npts].join(" ");

@@ -31,17 +31,15 @@ impl Observer for Progress {
     fn on_stage_start(&mut self, _run: &mut Run<'_, '_>, at: &StageAt<'_>) -> Result<(), Halt> {
         let stage = at.stage;
         if self.show {
-            let growth = match stage.step_growth {
-                1 => String::new(),
-                g => format!(", easy ones growing up to {g} times"),
+            let steps = match (&stage.dynamic, stage.step_growth) {
+                (Some(d), _) => format!("{} time step(s) of {} s", stage.load_steps, d.dt()),
+                (None, 1) => format!("{} load step(s)", stage.load_steps),
+                (None, g) => format!(
+                    "{} load step(s), easy ones growing up to {g} times",
+                    stage.load_steps
+                ),
             };
-            eprintln!(
-                "stage {}/{} '{}': {} load step(s){growth}",
-                at.k + 1,
-                self.n_stages,
-                stage.name,
-                stage.load_steps
-            );
+            eprintln!("stage {}/{} '{}': {steps}", at.k + 1, self.n_stages, stage.name);
             for note in stage.dynamic.iter().flat_map(|d| &d.notes) {
                 eprintln!("  {note}");
             }

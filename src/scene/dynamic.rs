@@ -10,7 +10,8 @@
 //!       # or one PEER NGA AT2 file per component (g; a component left out is zero):
 //!       # record: { x: RSN6_X.AT2, y: RSN6_Y.AT2, z: RSN6_UP.AT2 }
 //!       duration: 20.0                      # s, default the record's length
-//!       dt: 0.01                            # s, default the record's sample interval
+//!       dt: 0.01                            # s, default the record's sample interval; must
+//!       #                                   # divide the duration
 //!       damping: { ratio: 0.05, frequencies: [1.0, 5.0] }   # Rayleigh on M and K₀
 //!       # or: damping: { ratio: 0.05, modes: [1, 3] }  anchors at the modal frequencies of
 //!       # modes 1 and 3 of the stage's start state (a modal analysis runs there, see `modal`)
@@ -35,7 +36,8 @@
 //! A stage gets what it asks, or the scene is refused (exit 2, naming the stage and the key),
 //! or rank 0's log states the rule at the stage's start ([`DynamicStage::notes`]):
 //! - AT2 components left out are zero, shorter ones padded with zeros to the longest (stated;
-//!   [`super::record`]).
+//!   [`super::record`]);
+//! - `dt` must divide `duration` to 1e-9 relative (refused, naming the nearest `dt` that does).
 
 use super::error::SceneError;
 use super::record::RecordSpec;
@@ -60,7 +62,8 @@ pub struct DynamicSpec {
     /// Duration of the stage (s); default the record's length.
     #[serde(default)]
     pub duration: Option<f64>,
-    /// Time step (s); default the record's sample interval.
+    /// Time step (s); default the record's sample interval. It must divide the duration (to
+    /// 1e-9 relative).
     #[serde(default)]
     pub dt: Option<f64>,
     /// Newmark's β and γ (default 1/4 and 1/2, average acceleration).
@@ -259,14 +262,8 @@ pub fn resolve(
             format!("{duration} s must be finite and positive"),
         ));
     }
-    let dt = spec.dt.unwrap_or(record.dt());
-    let n = (duration / dt).round();
-    if !(dt.is_finite() && dt > 0.0 && dt <= duration) || n > MAX_STEPS {
-        return Err(inv(
-            "dt",
-            format!("{dt} s must be finite, positive, at most the duration {duration} s and give at most {MAX_STEPS} steps"),
-        ));
-    }
+    let steps =
+        time_steps(spec.dt.unwrap_or(record.dt()), duration, spec.dt.is_some()).map_err(|m| inv("dt", m))?;
     check_newmark(&spec.newmark).map_err(|m| inv("newmark", m))?;
     let alpha = check_hht(spec.hht_alpha, &spec.newmark).map_err(|m| inv("hht_alpha", m))?;
     if let Some(tol) = spec.newton_tol {
@@ -282,7 +279,7 @@ pub fn resolve(
         record,
         scale: spec.scale,
         duration,
-        steps: n as u32,
+        steps,
         newmark: spec.newmark,
         alpha,
         lumped: spec.mass == MassKind::Lumped,
@@ -294,6 +291,39 @@ pub fn resolve(
         newton_tol: spec.newton_tol,
         notes,
     })
+}
+
+/// Relative tolerance within which `dt` must divide the duration.
+pub const DIVIDES_TOLERANCE: f64 = 1e-9;
+
+/// The number of time steps of `duration` at `dt` (`given` in the scene, or else the record's
+/// sample interval): finite, positive, at most the duration, at most [`MAX_STEPS`] steps, and
+/// dividing the duration to [`DIVIDES_TOLERANCE`] (else the message names the nearest `dt`
+/// that does).
+fn time_steps(dt: f64, duration: f64, given: bool) -> Result<u32, String> {
+    let n = (duration / dt).round();
+    if !(dt.is_finite() && dt > 0.0 && dt <= duration) || n > MAX_STEPS {
+        return Err(format!("{dt} s must be finite, positive, at most the duration {duration} s and give at most {MAX_STEPS} steps"));
+    }
+    if (n * dt - duration).abs() <= DIVIDES_TOLERANCE * duration {
+        return Ok(n as u32);
+    }
+    let ratio = duration / dt;
+    let (k, nearest) = [ratio.floor(), ratio.ceil()]
+        .into_iter()
+        .filter(|&k| k >= 1.0)
+        .map(|k| (k, duration / k))
+        .min_by(|a, b| (a.1 - dt).abs().total_cmp(&(b.1 - dt).abs()))
+        .unwrap_or((1.0, duration));
+    let which = if given {
+        format!("{dt} s")
+    } else {
+        format!("the record's sample interval {dt} s (`dt` not given)")
+    };
+    Err(format!(
+        "{which} does not divide the duration {duration} s ({ratio:.4} steps): give `dt: \
+         {nearest}` ({k} steps), the nearest that does, or a duration that is a multiple of dt"
+    ))
 }
 
 /// β > 0 and γ ≥ 1/2 (unconditional stability needs 2β ≥ γ ≥ 1/2; conditional schemes are
@@ -362,6 +392,28 @@ fn check_damping(d: &RayleighSpec) -> Result<Damping, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `dt` divides the duration to 1e-9 relative, or the message names the nearest `dt` that
+    /// does (issue 56: `dt: 0.21` over `duration: 0.3` ran one step of 0.3 s).
+    #[test]
+    fn a_dt_must_divide_the_duration_and_the_message_names_the_nearest_that_does() {
+        assert_eq!(time_steps(0.01, 0.3, true), Ok(30));
+        assert_eq!(time_steps(0.01, 20.0, false), Ok(2000));
+        assert_eq!(time_steps(0.01 * (1.0 + 1e-12), 0.3, true), Ok(30));
+        let e = time_steps(0.21, 0.3, true).expect_err("1.43 steps");
+        assert!(
+            e.starts_with("0.21 s does not divide the duration 0.3 s (1.4286 steps)")
+                && e.contains("give `dt: 0.15` (2 steps)"),
+            "{e}"
+        );
+        let e = time_steps(0.01, 0.025, false).expect_err("2.5 steps");
+        assert!(
+            e.contains("the record's sample interval 0.01 s (`dt` not given)") && e.contains("(3 steps)"),
+            "{e}"
+        );
+        let e = time_steps(0.5, 0.3, true).expect_err("more than the duration");
+        assert!(e.contains("at most the duration 0.3 s"), "{e}");
+    }
 
     #[test]
     fn hht_alpha_is_checked_and_excludes_a_newmark_of_its_own() {
