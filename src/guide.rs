@@ -214,7 +214,8 @@
 //! or rank 0's log states the rule at the stage's start:
 //!
 //! * `dt` must divide `duration` (to 1e-9 relative): `dt: 0.21` over `duration: 0.3` is refused
-//!   with the nearest `dt` that does, 0.15 s.
+//!   with the nearest `dt` that does, 0.15 s;
+//! * a dynamic stage takes no `load_steps`: its steps are `duration`/`dt`.
 //!
 //! A dynamic stage has its own `linear_solver` and, if given, its own `newton_tol`; the static
 //! stages' `solver.linear_solver` and `solver.newton_tol` do not reach it. The seed quake

@@ -349,6 +349,18 @@ fn a_dt_that_does_not_divide_the_duration_exits_2_naming_the_nearest_that_does()
     );
 }
 
+/// Issue 56: `load_steps` on a dynamic stage was ignored; now it is refused naming the key.
+#[test]
+fn load_steps_on_a_dynamic_stage_exits_2() {
+    assert_exits_2(
+        "load_steps on a dynamic stage",
+        &quake_scene("load_steps: 8, dynamic: { record: r.csv }"),
+        &short_record(),
+        "stages[1].load_steps: a dynamic stage steps in time: its 3 steps are \
+         `dynamic.duration` over `dynamic.dt`",
+    );
+}
+
 /// A PEER AT2 component of `npts` values of 0.01 g at `dt` (s, as the header writes it).
 fn at2(dt: &str, npts: usize) -> String {
     let values = vec![".1000000E-01"; npts].join(" ");
