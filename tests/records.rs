@@ -1,10 +1,11 @@
 //! Ground-motion records in scenes (issue 56): one PEER NGA AT2 file per component gives the
 //! same quake, bit for bit, as the same record in CSV; a component left out is zero and a
-//! shorter one is padded with zeros, both stated in the log. The AT2 files are written from
-//! the committed seed record (`inputs/accel/seed_quake.csv`) in g with 7 significant digits,
-//! as PEER writes them; the CSV compared with them holds the values those digits give
-//! (g × 9.80665 m/s²), not the seed's own (which 7 digits in g do not round-trip), so both
-//! readers give the same f64s.
+//! shorter one is padded with zeros, both stated in the log; a record shorter than the stage's
+//! duration is followed by ground at rest, stated in the log, the same quake as the record
+//! continued with zeros. The AT2 files are written from the committed seed record
+//! (`inputs/accel/seed_quake.csv`) in g with 7 significant digits, as PEER writes them; the CSV
+//! compared with them holds the values those digits give (g × 9.80665 m/s²), not the seed's own
+//! (which 7 digits in g do not round-trip), so both readers give the same f64s.
 
 mod common;
 
@@ -191,6 +192,43 @@ fn at2_components_left_out_or_shorter_are_zeros_and_the_log_says_so() {
     }
     let quake = assert_same_results(d, "csv", "at2");
     println!("x and a shorter z in AT2: {quake} quake steps identical to the padded CSV");
+}
+
+/// Issue 56: a record shorter than the duration was padded with zeros without a word. The
+/// ground is at rest after the record's end, one log line says so, and the quake is the same as
+/// under the record continued with zeros to the duration.
+#[test]
+fn after_a_record_shorter_than_the_duration_the_ground_is_at_rest_and_the_log_says_so() {
+    let _turn = mpi_turn();
+    let dir = tempdir();
+    let d = dir.path();
+    let seed = seed_record();
+    let cut = |n: usize, keep: usize| {
+        Axis::ALL.map(|axis| {
+            let mut c = seed.component(axis)[..keep].to_vec();
+            c.resize(n, 0.0);
+            c
+        })
+    };
+    let [x, y, z] = cut(21, 20);
+    Accelerogram::new(0.01, x, y, z)
+        .unwrap()
+        .write_csv(&d.join("short.csv"))
+        .unwrap();
+    let [x, y, z] = cut(41, 20);
+    Accelerogram::new(0.01, x, y, z)
+        .unwrap()
+        .write_csv(&d.join("long.csv"))
+        .unwrap();
+    column_scene(d, "short.yaml", "short.csv", ", duration: 0.4");
+    column_scene(d, "long.yaml", "long.csv", "");
+    let log = run(d, "short.yaml", "short");
+    let rule = "record ends at 0.2 s; from 0.2 to 0.4 s the ground is at rest";
+    assert_eq!(log.matches(rule).count(), 1, "'{rule}' once in:\n{log}");
+    let log = run(d, "long.yaml", "long");
+    assert!(!log.contains("the ground is at rest"), "a whole record:\n{log}");
+    let quake = assert_same_results(d, "short", "long");
+    assert_eq!(quake, 8, "quake steps compared");
 }
 
 /// `cfrd schema` shows both forms of `record`: a path (CSV) or the AT2 files of x, y and z.

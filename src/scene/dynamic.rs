@@ -37,7 +37,9 @@
 //! or rank 0's log states the rule at the stage's start ([`DynamicStage::notes`]):
 //! - AT2 components left out are zero, shorter ones padded with zeros to the longest (stated;
 //!   [`super::record`]);
-//! - `dt` must divide `duration` to 1e-9 relative (refused, naming the nearest `dt` that does).
+//! - `dt` must divide `duration` to 1e-9 relative (refused, naming the nearest `dt` that does);
+//! - after a record shorter than `duration` the ground is at rest, zero ground acceleration to
+//!   the stage's end (stated).
 
 use super::error::SceneError;
 use super::record::RecordSpec;
@@ -54,12 +56,13 @@ pub struct DynamicSpec {
     /// Ground acceleration record, relative to the scene's folder: a CSV file with the header
     /// `t,a_x,a_y,a_z` (m/s², the scene's axes x stream, y dam axis, z up), or one PEER NGA AT2
     /// file per component, `{ x: FILE.AT2, y: FILE.AT2, z: FILE.AT2 }` (in g; a component left
-    /// out is zero; [`super::record`]).
+    /// out is zero; [`super::record`]). After the record's end the ground is at rest.
     pub record: RecordSpec,
     /// Factor on all three components of the record (default 1).
     #[serde(default = "one")]
     pub scale: f64,
-    /// Duration of the stage (s); default the record's length.
+    /// Duration of the stage (s); default the record's length. Past the record's end the ground
+    /// is at rest (zero ground acceleration), which the run's log states.
     #[serde(default)]
     pub duration: Option<f64>,
     /// Time step (s); default the record's sample interval. It must divide the duration (to
@@ -230,7 +233,8 @@ pub struct DynamicStage {
     /// Newton's tolerance in this stage, if not the scene's.
     pub newton_tol: Option<f64>,
     /// What rank 0's log states at the stage's start about the ground motion, one line each:
-    /// how the components of an AT2 record were completed.
+    /// how the components of an AT2 record were completed, and where the record ends before
+    /// the duration ("the ground is at rest" from there).
     pub notes: Vec<String>,
 }
 
@@ -247,7 +251,7 @@ pub fn resolve(
     let inv = |key: &str, message: String| invalid(&format!("{path}.{key}"), message);
     let super::record::Record {
         accelerogram: record,
-        notes,
+        mut notes,
     } = spec.record.read(base, &inv)?;
     if !(spec.scale.is_finite() && spec.scale > 0.0) {
         return Err(inv(
@@ -275,6 +279,7 @@ pub fn resolve(
         Some(d) => Some(check_damping(d).map_err(|m| inv("damping", m))?),
         None => None,
     };
+    notes.extend(quiet_tail(&record, duration));
     Ok(DynamicStage {
         record,
         scale: spec.scale,
@@ -324,6 +329,13 @@ fn time_steps(dt: f64, duration: f64, given: bool) -> Result<u32, String> {
         "{which} does not divide the duration {duration} s ({ratio:.4} steps): give `dt: \
          {nearest}` ({k} steps), the nearest that does, or a duration that is a multiple of dt"
     ))
+}
+
+/// The log line of a record that ends before `duration`: the ground is at rest from its end.
+fn quiet_tail(record: &Accelerogram, duration: f64) -> Option<String> {
+    let end = record.duration();
+    (end < duration * (1.0 - DIVIDES_TOLERANCE))
+        .then(|| format!("record ends at {end} s; from {end} to {duration} s the ground is at rest"))
 }
 
 /// β > 0 and γ ≥ 1/2 (unconditional stability needs 2β ≥ γ ≥ 1/2; conditional schemes are
