@@ -218,7 +218,8 @@
 //! * a dynamic stage takes no `load_steps`: its steps are `duration`/`dt`;
 //! * a `duration` past the record's end is a rule, not an error: from the record's last sample
 //!   on the ground is at rest (zero ground acceleration), a quiet tail in which the dam vibrates
-//!   freely, and the log says so ("record ends at 20 s; from 20 to 25 s the ground is at rest").
+//!   freely, and the log says so ("record ends at 20 s; from 20 to 25 s the ground is at rest");
+//! * `damping` gives its ratio with one of `frequencies: [f1, f2]` or `modes: [i, j]`.
 //!
 //! A dynamic stage has its own `linear_solver` and, if given, its own `newton_tol`; the static
 //! stages' `solver.linear_solver` and `solver.newton_tol` do not reach it. The seed quake

@@ -361,6 +361,19 @@ fn load_steps_on_a_dynamic_stage_exits_2() {
     );
 }
 
+/// Issue 56: a damping ratio with neither anchor was refused with "…not both"; now the message
+/// asks for one of them.
+#[test]
+fn a_damping_ratio_without_anchors_exits_2_asking_for_frequencies_or_modes() {
+    assert_exits_2(
+        "damping ratio alone",
+        &quake_scene("dynamic: { record: r.csv, damping: { ratio: 0.05 } }"),
+        &short_record(),
+        "stages[1].dynamic.damping: ratio 0.05 needs its two anchors: give one of \
+         `frequencies: [f1, f2]` (Hz) or `modes: [i, j]`",
+    );
+}
+
 /// A PEER AT2 component of `npts` values of 0.01 g at `dt` (s, as the header writes it).
 fn at2(dt: &str, npts: usize) -> String {
     let values = vec![".1000000E-01"; npts].join(" ");

@@ -39,7 +39,8 @@
 //!   [`super::record`]);
 //! - `dt` must divide `duration` to 1e-9 relative (refused, naming the nearest `dt` that does);
 //! - after a record shorter than `duration` the ground is at rest, zero ground acceleration to
-//!   the stage's end (stated).
+//!   the stage's end (stated);
+//! - a damping ratio needs its two anchors (refused otherwise).
 
 use super::error::SceneError;
 use super::record::RecordSpec;
@@ -158,7 +159,7 @@ pub enum MassKind {
 
 /// Rayleigh damping: the ratio ζ reached at two frequencies (spec seismic §3.3), given
 /// directly or as two modes of the stage's start state. Exactly one of `frequencies` and
-/// `modes`.
+/// `modes` is given with the ratio.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct RayleighSpec {
@@ -393,7 +394,16 @@ fn check_damping(d: &RayleighSpec) -> Result<Damping, String> {
             }
             Anchors::Modes([i, j])
         }
-        _ => return Err("give either `frequencies: [f1, f2]` or `modes: [i, j]`, not both".into()),
+        (None, None) => {
+            return Err(format!(
+                "ratio {} needs its two anchors: give one of `frequencies: [f1, f2]` (Hz) or \
+                 `modes: [i, j]`",
+                d.ratio
+            ))
+        }
+        (Some(_), Some(_)) => {
+            return Err("give either `frequencies: [f1, f2]` or `modes: [i, j]`, not both".into())
+        }
     };
     Ok(Damping {
         ratio: d.ratio,
