@@ -13,7 +13,7 @@
 //! | [`scene`] | [`Scene::from_str`]: parse, validation, mesh, cross-references | `cfrd check` |
 //! | [`gmsh`] | [`crate::mesh::gmsh::parse_gmsh`] (MSH 2.2 and 4.1 detected from the header) | `mesh.file` |
 //! | [`accel_csv`] | [`Accelerogram::from_csv_str`] | `stages[k].dynamic.record` |
-//! | [`accel_at2`] | [`crate::seismic::at2::parse_at2`], then [`Accelerogram::from_components`] | `cfrd::seismic::read_at2` |
+//! | [`accel_at2`] | [`crate::seismic::at2::parse_at2`], then [`Accelerogram::from_components`] | `stages[k].dynamic.record: { x, y, z }` |
 //! | [`state_codec()`] | [`crate::solver::state_codec`] decoders of every model | a checkpoint's `states` rows |
 
 use crate::material::elastic::ElasticParams;

@@ -192,7 +192,7 @@
 //! earthquake:
 //!   record: ../accel/seed_quake.csv   # t,a_x,a_y,a_z in m/s², our axes (cfrd accel writes it)
 //!   duration: 20.0                    # s (default: the record's length)
-//!   dt: 0.01                          # s (default: the record's sample interval)
+//!   dt: 0.01                          # s (default: the record's sample interval), divides duration
 //!   damping: { ratio: 0.05, frequencies: [1.0, 5.0] }   # C = a_M·M + a_K·K₀ (optional)
 //!   output_every: 10                  # fields every 10 steps (default: the stage's end only)
 //!   hht_alpha: -0.1                   # HHT-α instead of average acceleration (α ∈ [−1/3, 0])
@@ -201,6 +201,25 @@
 //!   # predictor: extrapolate          # Newton from u₀ + Δt·v₀ (default none: from u₀)
 //!   # line_search: secant             # default full_step_first
 //! ```
+//!
+//! The record is a CSV file of the three components (above), or one PEER NGA AT2 file per
+//! component, `record: { x: RSN6_X.AT2, y: RSN6_Y.AT2, z: RSN6_UP.AT2 }`, paths relative to the
+//! scene's folder: each file's header gives its units (it must say `UNITS OF G`; the values
+//! are converted with g = 9.80665 m/s²) and its `DT`. A component left out is zero, at least one
+//! is given; the given ones must share their DT (to 1e-9 relative), or the scene is refused
+//! naming the file and the key (`…record.y`); shorter components are padded with zeros to the
+//! longest. The run's log states both at the stage's start.
+//!
+//! A dynamic stage runs what it asks, or it is refused (exit 2, naming the stage and the key),
+//! or rank 0's log states the rule at the stage's start:
+//!
+//! * `dt` must divide `duration` (to 1e-9 relative): `dt: 0.21` over `duration: 0.3` is refused
+//!   with the nearest `dt` that does, 0.15 s;
+//! * a dynamic stage takes no `load_steps`: its steps are `duration`/`dt`;
+//! * a `duration` past the record's end is a rule, not an error: from the record's last sample
+//!   on the ground is at rest (zero ground acceleration), a quiet tail in which the dam vibrates
+//!   freely, and the log says so ("record ends at 20 s; from 20 to 25 s the ground is at rest");
+//! * `damping` gives its ratio with one of `frequencies: [f1, f2]` or `modes: [i, j]`.
 //!
 //! A dynamic stage has its own `linear_solver` and, if given, its own `newton_tol`; the static
 //! stages' `solver.linear_solver` and `solver.newton_tol` do not reach it. The seed quake

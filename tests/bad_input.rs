@@ -265,46 +265,158 @@ fn cases() -> Vec<Case> {
 #[test]
 fn bad_input_exits_2_with_a_clear_message_at_two_ranks() {
     for (case, scene, files, expect) in cases() {
-        let dir = tempdir();
-        std::fs::write(dir.path().join("scene.yaml"), &scene).unwrap();
-        for (name, body) in &files {
-            std::fs::write(dir.path().join(name), body).unwrap();
+        assert_exits_2(case, &scene, &files, expect);
+    }
+}
+
+/// `cfrd run` and `cfrd check` of `scene` (with the extra `files`) on 2 ranks exit 2 within a
+/// minute, with an error line holding `expect`, no panic and no results.
+fn assert_exits_2(case: &str, scene: &str, files: &[(&str, String)], expect: &str) {
+    let dir = tempdir();
+    std::fs::write(dir.path().join("scene.yaml"), scene).unwrap();
+    for (name, body) in files {
+        std::fs::write(dir.path().join(name), body).unwrap();
+    }
+    for args in [
+        vec!["run", "scene.yaml", "-o", "out"],
+        vec!["check", "scene.yaml"],
+    ] {
+        if case == "bad petsc option" && args[0] == "check" {
+            continue; // PETSc options are checked when the solver is set up
         }
-        for args in [
-            vec!["run", "scene.yaml", "-o", "out"],
-            vec!["check", "scene.yaml"],
-        ] {
-            if case == "bad petsc option" && args[0] == "check" {
-                continue; // PETSc options are checked when the solver is set up
-            }
-            let t = std::time::Instant::now();
-            let o = cfrd_mpi(2, dir.path(), &args);
-            let msg = text(&o);
-            assert_eq!(
-                o.status.code(),
-                Some(2),
-                "{case} ({}): exit {:?}\n{msg}",
-                args[0],
-                o.status.code()
-            );
-            assert!(
-                msg.contains(expect),
-                "{case} ({}): message lacks '{expect}':\n{msg}",
-                args[0]
-            );
-            assert!(msg.contains("error:"), "{case}: no error line:\n{msg}");
-            assert!(!msg.contains("panicked"), "{case}: panic:\n{msg}");
-            assert!(t.elapsed().as_secs() < 60, "{case}: took {:?}", t.elapsed());
-            println!(
-                "{case} ({}): {}",
-                args[0],
-                msg.lines().find(|l| l.contains("error:")).unwrap_or("")
-            );
-        }
-        assert!(
-            !dir.path().join("out/results.h5").exists(),
-            "{case}: results written despite the error"
+        let t = std::time::Instant::now();
+        let o = cfrd_mpi(2, dir.path(), &args);
+        let msg = text(&o);
+        assert_eq!(
+            o.status.code(),
+            Some(2),
+            "{case} ({}): exit {:?}\n{msg}",
+            args[0],
+            o.status.code()
         );
+        assert!(
+            msg.contains(expect),
+            "{case} ({}): message lacks '{expect}':\n{msg}",
+            args[0]
+        );
+        assert!(msg.contains("error:"), "{case}: no error line:\n{msg}");
+        assert!(!msg.contains("panicked"), "{case}: panic:\n{msg}");
+        assert!(t.elapsed().as_secs() < 60, "{case}: took {:?}", t.elapsed());
+        println!(
+            "{case} ({}): {}",
+            args[0],
+            msg.lines().find(|l| l.contains("error:")).unwrap_or("")
+        );
+    }
+    assert!(
+        !dir.path().join("out/results.h5").exists(),
+        "{case}: results written despite the error"
+    );
+}
+
+/// [`GOOD`] placed in a first stage and shaken in a second, `shake`, with the stage keys
+/// `keys` (`dynamic: {...}` among them).
+fn quake_scene(keys: &str) -> String {
+    format!("{GOOD}stages:\n  - {{ name: place, activate: [layer_1] }}\n  - {{ name: shake, {keys} }}\n")
+}
+
+/// A record of 0.03 s at Δt = 0.01 s (`r.csv`).
+fn short_record() -> Vec<(&'static str, String)> {
+    vec![(
+        "r.csv",
+        "t,a_x,a_y,a_z\n0,0,0,0\n0.01,0.1,0,0\n0.02,0,0,0\n0.03,0,0,0\n".into(),
+    )]
+}
+
+/// Issue 56: `dt: 0.21` over `duration: 0.3` ran one step of 0.3 s; a `dt` that does not
+/// divide the duration is now refused naming dt, the duration and the nearest dt that does
+/// (here 0.015 s, two steps), also when dt is the record's sample interval.
+#[test]
+fn a_dt_that_does_not_divide_the_duration_exits_2_naming_the_nearest_that_does() {
+    assert_exits_2(
+        "dt 0.021 over 0.03 s",
+        &quake_scene("dynamic: { record: r.csv, dt: 0.021 }"),
+        &short_record(),
+        "stages[1].dynamic.dt: 0.021 s does not divide the duration 0.03 s (1.4286 steps): \
+         give `dt: 0.015` (2 steps)",
+    );
+    assert_exits_2(
+        "the record's dt over 0.025 s",
+        &quake_scene("dynamic: { record: r.csv, duration: 0.025 }"),
+        &short_record(),
+        "stages[1].dynamic.dt: the record's sample interval 0.01 s (`dt` not given) does not \
+         divide the duration 0.025 s",
+    );
+}
+
+/// Issue 56: `load_steps` on a dynamic stage was ignored; now it is refused naming the key.
+#[test]
+fn load_steps_on_a_dynamic_stage_exits_2() {
+    assert_exits_2(
+        "load_steps on a dynamic stage",
+        &quake_scene("load_steps: 8, dynamic: { record: r.csv }"),
+        &short_record(),
+        "stages[1].load_steps: a dynamic stage steps in time: its 3 steps are \
+         `dynamic.duration` over `dynamic.dt`",
+    );
+}
+
+/// Issue 56: a damping ratio with neither anchor was refused with "…not both"; now the message
+/// asks for one of them.
+#[test]
+fn a_damping_ratio_without_anchors_exits_2_asking_for_frequencies_or_modes() {
+    assert_exits_2(
+        "damping ratio alone",
+        &quake_scene("dynamic: { record: r.csv, damping: { ratio: 0.05 } }"),
+        &short_record(),
+        "stages[1].dynamic.damping: ratio 0.05 needs its two anchors: give one of \
+         `frequencies: [f1, f2]` (Hz) or `modes: [i, j]`",
+    );
+}
+
+/// A PEER AT2 component of `npts` values of 0.01 g at `dt` (s, as the header writes it).
+fn at2(dt: &str, npts: usize) -> String {
+    let values = vec![".1000000E-01"; npts].join(" ");
+    format!(
+        "PEER NGA STRONG MOTION DATABASE RECORD\nTEST\nACCELERATION TIME SERIES IN UNITS OF G\n\
+         NPTS= {npts}, DT= {dt} SEC\n{values}\n"
+    )
+}
+
+/// AT2 components are checked like the CSV: a time step other than the first component's, a
+/// file not in g, a record without a component and an unknown axis exit 2 naming the key (and
+/// the file).
+#[test]
+fn bad_at2_components_exit_2_naming_the_file_and_the_key() {
+    let cases = [
+        (
+            "AT2 components of different time steps",
+            "dynamic: { record: { x: x.AT2, z: z.AT2 } }",
+            "stages[1].dynamic.record.z: z.AT2: DT = 0.02 s, but record.x (x.AT2) has DT = 0.01 s",
+        ),
+        (
+            "an AT2 component not in g",
+            "dynamic: { record: { y: cm.AT2 } }",
+            "stages[1].dynamic.record.y: cm.AT2:3: expected acceleration in UNITS OF G",
+        ),
+        (
+            "an AT2 record without a component",
+            "dynamic: { record: {} }",
+            "stages[1].dynamic.record: no component file given",
+        ),
+        (
+            "an AT2 record with an unknown axis",
+            "dynamic: { record: { w: x.AT2 } }",
+            "stages[1].dynamic.record: unknown field `w`, expected one of `x`, `y`, `z`",
+        ),
+    ];
+    let files = vec![
+        ("x.AT2", at2(".0100", 4)),
+        ("z.AT2", at2(".0200", 4)),
+        ("cm.AT2", at2(".0100", 4).replace("UNITS OF G", "UNITS OF CM/S/S")),
+    ];
+    for (case, keys, expect) in cases {
+        assert_exits_2(case, &quake_scene(keys), &files, expect);
     }
 }
 

@@ -278,7 +278,7 @@ fn bad_modal_input_exits_2_naming_the_place() {
         ),
         (
             "  - { name: q, dynamic: { record: r.csv, damping: { ratio: 0.05 } } }\n",
-            "stages[1].dynamic.damping: give either",
+            "stages[1].dynamic.damping: ratio 0.05 needs its two anchors: give one of",
         ),
     ];
     for (stages, expect) in cases {

@@ -1,4 +1,5 @@
-//! Progress on rank 0 (`-v`): a line at every stage's start, and at every converged step a bar
+//! Progress on rank 0 (`-v`): a line at every stage's start (with a dynamic stage's notes on its
+//! record, [`crate::scene::dynamic::DynamicStage::notes`]), and at every converged step a bar
 //! on a terminal or a line in a log (nohup, a cluster job's output).
 
 use super::observer::{Halt, Observer, Run, RunEnd, StageAt, StepAt};
@@ -30,17 +31,18 @@ impl Observer for Progress {
     fn on_stage_start(&mut self, _run: &mut Run<'_, '_>, at: &StageAt<'_>) -> Result<(), Halt> {
         let stage = at.stage;
         if self.show {
-            let growth = match stage.step_growth {
-                1 => String::new(),
-                g => format!(", easy ones growing up to {g} times"),
+            let steps = match (&stage.dynamic, stage.step_growth) {
+                (Some(d), _) => format!("{} time step(s) of {} s", stage.load_steps, d.dt()),
+                (None, 1) => format!("{} load step(s)", stage.load_steps),
+                (None, g) => format!(
+                    "{} load step(s), easy ones growing up to {g} times",
+                    stage.load_steps
+                ),
             };
-            eprintln!(
-                "stage {}/{} '{}': {} load step(s){growth}",
-                at.k + 1,
-                self.n_stages,
-                stage.name,
-                stage.load_steps
-            );
+            eprintln!("stage {}/{} '{}': {steps}", at.k + 1, self.n_stages, stage.name);
+            for note in stage.dynamic.iter().flat_map(|d| &d.notes) {
+                eprintln!("  {note}");
+            }
         }
         self.bar = progress_bar(self.show, stage.load_steps as u64);
         Ok(())

@@ -7,8 +7,11 @@
 //!     loads: { hydrostatic: [ { faces: upstream, level: 2840.0 } ] }
 //!     dynamic:
 //!       record: ../accel/seed_quake.csv     # t,a_x,a_y,a_z in m/s² (cfrd accel writes it)
+//!       # or one PEER NGA AT2 file per component (g; a component left out is zero):
+//!       # record: { x: RSN6_X.AT2, y: RSN6_Y.AT2, z: RSN6_UP.AT2 }
 //!       duration: 20.0                      # s, default the record's length
-//!       dt: 0.01                            # s, default the record's sample interval
+//!       dt: 0.01                            # s, default the record's sample interval; must
+//!       #                                   # divide the duration
 //!       damping: { ratio: 0.05, frequencies: [1.0, 5.0] }   # Rayleigh on M and K₀
 //!       # or: damping: { ratio: 0.05, modes: [1, 3] }  anchors at the modal frequencies of
 //!       # modes 1 and 3 of the stage's start state (a modal analysis runs there, see `modal`)
@@ -29,28 +32,42 @@
 //! whole vector, so memory and work per rank fall with the rank count. `canonical_lu` gathers
 //! the Jacobian onto every rank and gives the same bits at any rank count; `iterative` and
 //! `reduced_amg` are the static solvers of the same names.
+//!
+//! A stage gets what it asks, or the scene is refused (exit 2, naming the stage and the key),
+//! or rank 0's log states the rule at the stage's start ([`DynamicStage::notes`]):
+//! - AT2 components left out are zero, shorter ones padded with zeros to the longest (stated;
+//!   [`super::record`]);
+//! - `dt` must divide `duration` to 1e-9 relative (refused, naming the nearest `dt` that does);
+//! - after a record shorter than `duration` the ground is at rest, zero ground acceleration to
+//!   the stage's end (stated);
+//! - a damping ratio needs its two anchors (refused otherwise).
 
 use super::error::SceneError;
+use super::record::RecordSpec;
 use super::schema::{LineSearch, LinearSolver, Predictor};
 use crate::seismic::Accelerogram;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// How a stage is integrated in time (scene key `stages[k].dynamic`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct DynamicSpec {
-    /// Ground acceleration record: CSV with the header `t,a_x,a_y,a_z` (m/s², the scene's axes
-    /// x stream, y dam axis, z up), relative to the scene's folder.
-    pub record: PathBuf,
+    /// Ground acceleration record, relative to the scene's folder: a CSV file with the header
+    /// `t,a_x,a_y,a_z` (m/s², the scene's axes x stream, y dam axis, z up), or one PEER NGA AT2
+    /// file per component, `{ x: FILE.AT2, y: FILE.AT2, z: FILE.AT2 }` (in g; a component left
+    /// out is zero; [`super::record`]). After the record's end the ground is at rest.
+    pub record: RecordSpec,
     /// Factor on all three components of the record (default 1).
     #[serde(default = "one")]
     pub scale: f64,
-    /// Duration of the stage (s); default the record's length.
+    /// Duration of the stage (s); default the record's length. Past the record's end the ground
+    /// is at rest (zero ground acceleration), which the run's log states.
     #[serde(default)]
     pub duration: Option<f64>,
-    /// Time step (s); default the record's sample interval.
+    /// Time step (s); default the record's sample interval. It must divide the duration (to
+    /// 1e-9 relative).
     #[serde(default)]
     pub dt: Option<f64>,
     /// Newmark's β and γ (default 1/4 and 1/2, average acceleration).
@@ -142,7 +159,7 @@ pub enum MassKind {
 
 /// Rayleigh damping: the ratio ζ reached at two frequencies (spec seismic §3.3), given
 /// directly or as two modes of the stage's start state. Exactly one of `frequencies` and
-/// `modes`.
+/// `modes` is given with the ratio.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct RayleighSpec {
@@ -216,6 +233,10 @@ pub struct DynamicStage {
     pub linear_solver: LinearSolver,
     /// Newton's tolerance in this stage, if not the scene's.
     pub newton_tol: Option<f64>,
+    /// What rank 0's log states at the stage's start about the ground motion, one line each:
+    /// how the components of an AT2 record were completed, and where the record ends before
+    /// the duration ("the ground is at rest" from there).
+    pub notes: Vec<String>,
 }
 
 /// Largest number of time steps of one dynamic stage.
@@ -229,8 +250,10 @@ pub fn resolve(
     invalid: &dyn Fn(&str, String) -> SceneError,
 ) -> Result<DynamicStage, SceneError> {
     let inv = |key: &str, message: String| invalid(&format!("{path}.{key}"), message);
-    let file = base.join(&spec.record);
-    let record = Accelerogram::read_csv(&file).map_err(|e| inv("record", e.to_string()))?;
+    let super::record::Record {
+        accelerogram: record,
+        mut notes,
+    } = spec.record.read(base, &inv)?;
     if !(spec.scale.is_finite() && spec.scale > 0.0) {
         return Err(inv(
             "scale",
@@ -244,14 +267,8 @@ pub fn resolve(
             format!("{duration} s must be finite and positive"),
         ));
     }
-    let dt = spec.dt.unwrap_or(record.dt());
-    let n = (duration / dt).round();
-    if !(dt.is_finite() && dt > 0.0 && dt <= duration) || n > MAX_STEPS {
-        return Err(inv(
-            "dt",
-            format!("{dt} s must be finite, positive, at most the duration {duration} s and give at most {MAX_STEPS} steps"),
-        ));
-    }
+    let steps =
+        time_steps(spec.dt.unwrap_or(record.dt()), duration, spec.dt.is_some()).map_err(|m| inv("dt", m))?;
     check_newmark(&spec.newmark).map_err(|m| inv("newmark", m))?;
     let alpha = check_hht(spec.hht_alpha, &spec.newmark).map_err(|m| inv("hht_alpha", m))?;
     if let Some(tol) = spec.newton_tol {
@@ -263,11 +280,12 @@ pub fn resolve(
         Some(d) => Some(check_damping(d).map_err(|m| inv("damping", m))?),
         None => None,
     };
+    notes.extend(quiet_tail(&record, duration));
     Ok(DynamicStage {
         record,
         scale: spec.scale,
         duration,
-        steps: n as u32,
+        steps,
         newmark: spec.newmark,
         alpha,
         lumped: spec.mass == MassKind::Lumped,
@@ -277,7 +295,48 @@ pub fn resolve(
         line_search: spec.line_search,
         linear_solver: spec.linear_solver,
         newton_tol: spec.newton_tol,
+        notes,
     })
+}
+
+/// Relative tolerance within which `dt` must divide the duration.
+pub const DIVIDES_TOLERANCE: f64 = 1e-9;
+
+/// The number of time steps of `duration` at `dt` (`given` in the scene, or else the record's
+/// sample interval): finite, positive, at most the duration, at most [`MAX_STEPS`] steps, and
+/// dividing the duration to [`DIVIDES_TOLERANCE`] (else the message names the nearest `dt`
+/// that does).
+fn time_steps(dt: f64, duration: f64, given: bool) -> Result<u32, String> {
+    let n = (duration / dt).round();
+    if !(dt.is_finite() && dt > 0.0 && dt <= duration) || n > MAX_STEPS {
+        return Err(format!("{dt} s must be finite, positive, at most the duration {duration} s and give at most {MAX_STEPS} steps"));
+    }
+    if (n * dt - duration).abs() <= DIVIDES_TOLERANCE * duration {
+        return Ok(n as u32);
+    }
+    let ratio = duration / dt;
+    let (k, nearest) = [ratio.floor(), ratio.ceil()]
+        .into_iter()
+        .filter(|&k| k >= 1.0)
+        .map(|k| (k, duration / k))
+        .min_by(|a, b| (a.1 - dt).abs().total_cmp(&(b.1 - dt).abs()))
+        .unwrap_or((1.0, duration));
+    let which = if given {
+        format!("{dt} s")
+    } else {
+        format!("the record's sample interval {dt} s (`dt` not given)")
+    };
+    Err(format!(
+        "{which} does not divide the duration {duration} s ({ratio:.4} steps): give `dt: \
+         {nearest}` ({k} steps), the nearest that does, or a duration that is a multiple of dt"
+    ))
+}
+
+/// The log line of a record that ends before `duration`: the ground is at rest from its end.
+fn quiet_tail(record: &Accelerogram, duration: f64) -> Option<String> {
+    let end = record.duration();
+    (end < duration * (1.0 - DIVIDES_TOLERANCE))
+        .then(|| format!("record ends at {end} s; from {end} to {duration} s the ground is at rest"))
 }
 
 /// β > 0 and γ ≥ 1/2 (unconditional stability needs 2β ≥ γ ≥ 1/2; conditional schemes are
@@ -335,7 +394,16 @@ fn check_damping(d: &RayleighSpec) -> Result<Damping, String> {
             }
             Anchors::Modes([i, j])
         }
-        _ => return Err("give either `frequencies: [f1, f2]` or `modes: [i, j]`, not both".into()),
+        (None, None) => {
+            return Err(format!(
+                "ratio {} needs its two anchors: give one of `frequencies: [f1, f2]` (Hz) or \
+                 `modes: [i, j]`",
+                d.ratio
+            ))
+        }
+        (Some(_), Some(_)) => {
+            return Err("give either `frequencies: [f1, f2]` or `modes: [i, j]`, not both".into())
+        }
     };
     Ok(Damping {
         ratio: d.ratio,
@@ -346,6 +414,28 @@ fn check_damping(d: &RayleighSpec) -> Result<Damping, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `dt` divides the duration to 1e-9 relative, or the message names the nearest `dt` that
+    /// does (issue 56: `dt: 0.21` over `duration: 0.3` ran one step of 0.3 s).
+    #[test]
+    fn a_dt_must_divide_the_duration_and_the_message_names_the_nearest_that_does() {
+        assert_eq!(time_steps(0.01, 0.3, true), Ok(30));
+        assert_eq!(time_steps(0.01, 20.0, false), Ok(2000));
+        assert_eq!(time_steps(0.01 * (1.0 + 1e-12), 0.3, true), Ok(30));
+        let e = time_steps(0.21, 0.3, true).expect_err("1.43 steps");
+        assert!(
+            e.starts_with("0.21 s does not divide the duration 0.3 s (1.4286 steps)")
+                && e.contains("give `dt: 0.15` (2 steps)"),
+            "{e}"
+        );
+        let e = time_steps(0.01, 0.025, false).expect_err("2.5 steps");
+        assert!(
+            e.contains("the record's sample interval 0.01 s (`dt` not given)") && e.contains("(3 steps)"),
+            "{e}"
+        );
+        let e = time_steps(0.5, 0.3, true).expect_err("more than the duration");
+        assert!(e.contains("at most the duration 0.3 s"), "{e}");
+    }
 
     #[test]
     fn hht_alpha_is_checked_and_excludes_a_newmark_of_its_own() {

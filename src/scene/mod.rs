@@ -13,6 +13,7 @@ pub mod modal;
 pub mod output_spec;
 pub mod parse;
 pub mod ranges;
+pub mod record;
 pub mod resolved;
 pub mod restraint;
 pub mod schema;

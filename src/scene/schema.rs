@@ -166,7 +166,9 @@ pub struct StageSpec {
     /// goes linearly from the previous stage's to this one's).
     #[serde(default)]
     pub loads: LoadsSpec,
-    /// Load steps of this stage (default: `solver.load_steps`).
+    /// Load steps of this stage (default: `solver.load_steps`); a static stage's key only: a
+    /// dynamic stage's steps are its `dynamic.duration` over `dynamic.dt`, and `load_steps` on it
+    /// is an error.
     #[serde(default)]
     pub load_steps: Option<u32>,
     /// A dynamic stage: integrate in time under a ground-acceleration record

@@ -40,8 +40,8 @@ pub(super) fn resolve_stages(
 }
 
 /// Resolves `file.stages[k]` after the stages `before`; `placed` holds the stage that placed
-/// each block so far. A name used twice, an unknown block, a block placed twice and a second
-/// modal analysis are errors.
+/// each block so far. A name used twice, an unknown block, a block placed twice, `load_steps`
+/// on a dynamic stage and a second modal analysis are errors.
 pub(super) fn resolve_stage(
     file: &SceneFile,
     mesh: &Mesh,
@@ -78,6 +78,16 @@ pub(super) fn resolve_stage(
         None => None,
     };
     let (load_steps, step_growth) = match &dynamic {
+        Some(d) if st.load_steps.is_some() => {
+            return Err(inv(
+                &format!("stages[{k}].load_steps"),
+                format!(
+                    "a dynamic stage steps in time: its {} steps are `dynamic.duration` over \
+                     `dynamic.dt`; `load_steps` is for static stages only",
+                    d.steps
+                ),
+            ))
+        }
         Some(d) => (d.steps, 1),
         None => (
             st.load_steps.unwrap_or(file.solver.load_steps),

@@ -22,6 +22,9 @@ use thiserror::Error;
 pub const CSV_HEADER: &str = "t,a_x,a_y,a_z";
 /// Relative tolerance of the uniform-time check of the CSV reader (fraction of dt).
 pub const TIME_TOLERANCE: f64 = 1e-6;
+/// Relative tolerance within which single components share their time step
+/// ([`Accelerogram::from_components`]).
+pub const DT_TOLERANCE: f64 = 1e-9;
 
 /// A record that could not be read or written: the file, the 1-based line when the problem is
 /// on one line, and what is wrong.
@@ -127,13 +130,13 @@ impl Accelerogram {
     }
 
     /// A record from up to three single components (a missing one is zero). All given
-    /// components must share dt (to 1e-9 relative); shorter ones are padded with zeros to the
-    /// longest.
+    /// components must share dt (to [`DT_TOLERANCE`] relative); shorter ones are padded with
+    /// zeros to the longest.
     pub fn from_components(components: [Option<AccelComponent>; 3]) -> Result<Self, String> {
         let given: Vec<&AccelComponent> = components.iter().flatten().collect();
         let first = given.first().ok_or("no component given")?;
         let dt = first.dt;
-        if let Some(c) = given.iter().find(|c| (c.dt - dt).abs() > 1e-9 * dt) {
+        if let Some(c) = given.iter().find(|c| (c.dt - dt).abs() > DT_TOLERANCE * dt) {
             return Err(format!(
                 "components have different time steps: {dt} s and {} s",
                 c.dt
