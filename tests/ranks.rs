@@ -389,7 +389,10 @@ fn quakes_on_the_canonical_solver_at_one_and_two_ranks() {
             assert!(within, "{out}");
             // the static stages are still the same bit for bit
             let statics = out.lines().filter(|l| l.contains("(fill_"));
-            assert!(statics.clone().count() > 0 && statics.into_iter().all(|l| l.ends_with("| 0.000e0 |")), "{out}");
+            assert!(
+                statics.clone().count() > 0 && statics.into_iter().all(|l| l.ends_with("| 0.000e0 |")),
+                "{out}"
+            );
         }
     }
 }
