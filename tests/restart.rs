@@ -640,3 +640,62 @@ fn a_restart_into_its_own_directory_needs_overwrite_and_keeps_the_earlier_result
     run_ok(2, d, &[&args[..], &["--overwrite"]].concat());
     assert_bitwise(&d.join("full/results.h5"), &d.join("part/results.h5"), 0);
 }
+
+/// A restart whose record or partition file changed since the checkpoint was written is
+/// refused (exit 2, naming the scene key and the file); with `--accept-changed FILE` it goes
+/// on, says so, and `summary.json` lists the file.
+#[test]
+fn a_changed_record_or_partition_is_refused_at_restart() {
+    let dir = tempdir();
+    let d = dir.path();
+    let yaml = quake_scene().replace("units: SI\n", "units: SI\npartition: parts.json\n");
+    std::fs::write(d.join("col.yaml"), &yaml).unwrap();
+    std::fs::write(d.join("record.csv"), "t,a_x,a_y,a_z\n0,0,0,0\n3,1,0,0\n").unwrap();
+    let o = cfrd(d, &["partition", "col.yaml", "-n", "2", "-o", "parts.json"]);
+    assert!(o.status.success(), "{}", text(&o));
+    run_ok(
+        2,
+        d,
+        &["run", "col.yaml", "-o", "part", "-q", "--stop-after-stage", "2"],
+    );
+    let restart = [
+        "run",
+        "col.yaml",
+        "-o",
+        "rest",
+        "--restart",
+        "part/checkpoint.h5",
+        "--stop-after-stage",
+        "3",
+    ];
+    for (file, key) in [
+        ("record.csv", "stages[4].dynamic.record"),
+        ("parts.json", "partition"),
+    ] {
+        let original = std::fs::read(d.join(file)).unwrap();
+        std::fs::write(d.join(file), [&original[..], b"\n"].concat()).unwrap();
+        let o = cfrd_mpi(2, d, &restart);
+        assert_eq!(o.status.code(), Some(2), "{file}: {}", text(&o));
+        let named = format!("{key} ({}): its content changed", d.join(file).display());
+        assert!(
+            text(&o).contains(&named) && text(&o).contains("--accept-changed"),
+            "{file}: {}",
+            text(&o)
+        );
+        std::fs::write(d.join(file), original).unwrap();
+    }
+    std::fs::write(d.join("record.csv"), "t,a_x,a_y,a_z\n0,0,0,0\n3,2,0,0\n").unwrap();
+    let o = cfrd_mpi(
+        2,
+        d,
+        &[&restart[..], &["--accept-changed", "record.csv"]].concat(),
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    assert!(
+        text(&o).contains("going on with the changed input stages[4].dynamic.record"),
+        "{}",
+        text(&o)
+    );
+    let accepted = summary(&d.join("rest"))["accepted_changed_inputs"].clone();
+    assert_eq!(accepted.as_array().map(Vec::len), Some(1), "{accepted}");
+}

@@ -243,9 +243,14 @@ pub struct RunArgs {
     pub linear_solver: Option<cfrd::scene::schema::LinearSolver>,
     /// Write into an output directory that holds another run's `results.h5`,
     /// `checkpoint.h5` or `summary.json` (its old checkpoint is removed first); without it
-    /// such a directory is refused unless the run restarts from its checkpoint.
+    /// such a directory is refused, and so is a restart into its own checkpoint's directory.
     #[arg(long)]
     pub overwrite: bool,
+    /// With `--restart`: go on although this input file of the scene (mesh, partition or
+    /// record) changed since the checkpoint was written; said in the log and in
+    /// `summary.json` (repeatable).
+    #[arg(long = "accept-changed", value_name = "FILE")]
+    pub accept_changed: Vec<PathBuf>,
 }
 
 /// Parses `--stop-after-stage`: `K` (a stage of the schedule) or `+N` (stages of this run).

@@ -33,6 +33,7 @@ pub fn run(a: RunArgs, petsc: Vec<String>) -> ExitCode {
             monitor: a.monitor,
             integration_tol_ratio: a.integration_tol_ratio,
             linear_solver: a.linear_solver,
+            accept_changed: a.accept_changed,
         };
         cfrd::run::run(world, &opts)?;
         Ok(())

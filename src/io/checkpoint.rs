@@ -282,11 +282,13 @@ fn write_attrs(
         ("n_ranks", n_ranks),
     ];
     let m_hash = mesh_hash(mesh);
+    let inputs = crate::scene::inputs::to_text(&scene.inputs);
     let strings = [
         ("scene_hash", scene.hash.as_str()),
         ("mesh_hash", m_hash.as_str()),
         ("last_stage", stage_name),
         ("state_encoding", "postcard"),
+        (INPUT_FILES, inputs.as_str()),
     ];
     let sum = attrs_checksum(&numbers, &strings);
     let mut all_strings = strings.to_vec();
@@ -341,6 +343,26 @@ fn attrs_checksum(numbers: &[(&str, u64)], strings: &[(&str, &str)]) -> String {
     format!("{:016x}", xxhash_rust::xxh3::xxh3_64(text.join("\n").as_bytes()))
 }
 
+/// The `/checkpoint` attribute naming the scene's input files with their content hashes
+/// ([`crate::scene::inputs::to_text`]).
+pub const INPUT_FILES: &str = "input_files";
+
+/// The input files stored in the checkpoint at `path` (`None` for a checkpoint written before
+/// they were stored). One rank, after [`read`] has checked the file.
+pub fn stored_inputs(path: &Path) -> Result<Option<String>, IoError> {
+    let file = crate::io::results_reader::open(path).map_err(IoError::Layout)?;
+    let attr = file.group("checkpoint").and_then(|g| g.attr(INPUT_FILES));
+    match attr {
+        Ok(a) => {
+            let v: hdf5::types::VarLenUnicode = a
+                .read_scalar()
+                .map_err(|e| IoError::hdf5(format!("{}: {INPUT_FILES}", path.display()), e))?;
+            Ok(Some(v.as_str().to_string()))
+        }
+        Err(_) => Ok(None),
+    }
+}
+
 /// Reads the `/checkpoint` attributes and checks them against `attrs_checksum`; returns
 /// `n_nodes`, `n_elements`, `stages_done`, `scene_hash` and `mesh_hash`.
 fn checked_attrs(reader: &ResultsReader, path: &Path) -> Result<(u64, u64, u64, String, String), IoError> {
@@ -357,12 +379,17 @@ fn checked_attrs(reader: &ResultsReader, path: &Path) -> Result<(u64, u64, u64, 
     ];
     let (scene_hash, m_hash) = (text("scene_hash")?, text("mesh_hash")?);
     let (last, encoding) = (text("last_stage")?, text("state_encoding")?);
-    let strings = [
+    // checkpoints written before the input files were identified lack them
+    let inputs = text(INPUT_FILES).ok();
+    let mut strings = vec![
         ("scene_hash", scene_hash.as_str()),
         ("mesh_hash", m_hash.as_str()),
         ("last_stage", last.as_str()),
         ("state_encoding", encoding.as_str()),
     ];
+    if let Some(inputs) = &inputs {
+        strings.push((INPUT_FILES, inputs.as_str()));
+    }
     if text("attrs_checksum")? != attrs_checksum(&numbers, &strings) {
         return Err(corrupt(
             "the attributes of /checkpoint do not match their checksum",

@@ -239,6 +239,10 @@ pub struct RunSummary {
     /// restart (the run began with the next one).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub restarted_after_stage: Option<u64>,
+    /// For a restart given `--accept-changed`: the input files that changed since the
+    /// checkpoint and that the run went on with (`key: path`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub accepted_changed_inputs: Vec<String>,
     /// For a run ended early with `--stop-after-stage K`: K, the last stage run (the schedule
     /// is not finished; continue with `--restart <out>/checkpoint.h5`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -426,6 +430,7 @@ mod tests {
             interface_open: 2,
             interface_slipping: 3,
             restarted_after_stage: Some(2),
+            accepted_changed_inputs: vec!["stages[1].dynamic.record: record.csv".into()],
             stopped_after_stage: Some(3),
             checkpoint_seconds: 0.25,
             stage_seconds: vec![StageSeconds {

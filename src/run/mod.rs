@@ -97,6 +97,11 @@ pub fn run_scene(
         Some(path) => setup::restart(world, scene, path, &mut problem, &mut report, verbose)?,
         None => (0, None),
     };
+    // the files the scene reads are those the checkpoint was written with, or accepted
+    let accepted_changed = match &opts.restart {
+        Some(path) => setup::check_inputs(world, scene, path, &opts.accept_changed, !verbose)?,
+        None => Vec::new(),
+    };
     let mut pacer = checkpoints::CheckpointPacer::new(scene, opts, first_stage, &out_dir)?;
     timer.start(Phase::Output);
     let results_path = out_dir.join("results.h5");
@@ -130,6 +135,7 @@ pub fn run_scene(
         out_dir,
         record: RunRecord {
             first_stage,
+            accepted_changed,
             ..RunRecord::default()
         },
     };

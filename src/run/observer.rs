@@ -51,6 +51,9 @@ pub struct RunRecord {
     pub stopped_after: Option<u64>,
     /// The stage index the run started from (a restart's), 0 otherwise.
     pub first_stage: usize,
+    /// Input files that changed since the restart's checkpoint and were accepted
+    /// (`--accept-changed`), as `key: path`.
+    pub accepted_changed: Vec<String>,
 }
 
 /// A stage as the schedule reports it to the observers.

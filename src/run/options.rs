@@ -60,6 +60,9 @@ pub struct RunOptions {
     /// without changing the scene (its hash), so a run continues from its checkpoint on
     /// another solver.
     pub linear_solver: Option<crate::scene::schema::LinearSolver>,
+    /// Input files of the scene a restart accepts although they changed since the
+    /// checkpoint (`--accept-changed`).
+    pub accept_changed: Vec<std::path::PathBuf>,
 }
 
 /// Where a run in parts ends (`--stop-after-stage K` or `+N`).

@@ -103,6 +103,64 @@ pub fn start_solver<'a>(
     Ok((petsc, problem))
 }
 
+/// Checks the input files stored in the checkpoint at `path` against the scene's (on rank 0,
+/// shared): a file whose content changed since the checkpoint was written is refused, naming
+/// it, unless it is in `accepted`; returns the accepted changed ones as `key: path` (rank 0
+/// prints them unless `quiet`). A checkpoint written before input files were stored is
+/// accepted with a note. Collective.
+pub fn check_inputs(
+    world: &SimpleCommunicator,
+    scene: &Scene,
+    path: &Path,
+    accepted: &[std::path::PathBuf],
+    quiet: bool,
+) -> Result<Vec<String>, RunFailure> {
+    let local = match world.rank() {
+        0 => compare_inputs(scene, path, accepted, quiet),
+        _ => Ok(Vec::new()),
+    };
+    let mut bytes = any_error(world, local).map_err(input)?.join("\n").into_bytes();
+    broadcast_vec(world, 0, &mut bytes);
+    Ok(String::from_utf8_lossy(&bytes)
+        .lines()
+        .map(str::to_string)
+        .collect())
+}
+
+/// [`check_inputs`] on one rank.
+fn compare_inputs(
+    scene: &Scene,
+    path: &Path,
+    accepted: &[std::path::PathBuf],
+    quiet: bool,
+) -> Result<Vec<String>, String> {
+    let shown = path.display();
+    let Some(stored) = checkpoint::stored_inputs(path).map_err(|e| format!("restart from {shown}: {e}"))?
+    else {
+        if !quiet && !scene.inputs.is_empty() {
+            eprintln!("note: {shown} was written before checkpoints identified the scene's input files: they are not checked");
+        }
+        return Ok(Vec::new());
+    };
+    let all = crate::scene::inputs::changed(&stored, &scene.inputs, &[]);
+    let refused = crate::scene::inputs::changed(&stored, &scene.inputs, accepted);
+    if let Some((key, file, why)) = refused.first() {
+        return Err(format!(
+            "restart from {shown}: {key} ({file}): {why} since the checkpoint was written, so the \
+             restart would continue the run on other input; restore the file, or pass \
+             --accept-changed {file} to go on with it"
+        ));
+    }
+    let accepted: Vec<String> = all
+        .iter()
+        .map(|(key, file, _)| format!("{key}: {file}"))
+        .collect();
+    for a in accepted.iter().filter(|_| !quiet) {
+        eprintln!("warning: --accept-changed: going on with the changed input {a}");
+    }
+    Ok(accepted)
+}
+
 /// Restores `problem` and `report` from the checkpoint `path`: the stage index the run goes on
 /// from, and the step control of the stage a step checkpoint resumes inside. Collective.
 pub fn restart(
@@ -121,11 +179,11 @@ pub fn restart(
             "{}",
             match resume {
                 Some(p) => format!(
-                    "restarted from {} in stage {} '{}' at λ = {:.3}",
+                    "restarted from {} in stage {} '{}' at {}",
                     path.display(),
                     first_stage + 1,
                     scene.stages[first_stage].name,
-                    p.t
+                    super::results::stage_time(&scene.stages[first_stage], p.t)
                 ),
                 None => format!(
                     "restarted from {} after stage {first_stage} '{}'",

@@ -73,6 +73,7 @@ impl SummaryWriter {
         summary.interface_slipping = counts.slipping;
         summary.restarted_after_stage = self.restarted.then_some(run.record.first_stage as u64);
         summary.stopped_after_stage = run.record.stopped_after;
+        summary.accepted_changed_inputs = run.record.accepted_changed.clone();
         summary.checkpoint_seconds = max_f64(world, run.record.checkpoint_seconds);
         summary.stage_seconds = report.stage_seconds.clone();
         summary.modal = run.record.modal.clone();

@@ -9,6 +9,7 @@ pub mod blocks;
 mod checks;
 pub mod dynamic;
 pub mod error;
+pub mod inputs;
 pub mod modal;
 pub mod output_spec;
 pub mod parse;

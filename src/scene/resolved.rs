@@ -38,6 +38,9 @@ pub struct Scene {
     pub hash: String,
     /// Directory that relative paths of the scene (mesh, partition) are taken from.
     pub base: PathBuf,
+    /// The files the scene reads besides its text, with their content hashes (checkpoints
+    /// refuse a restart with changed ones: [`super::inputs`]).
+    pub inputs: Vec<super::inputs::InputFile>,
 }
 
 impl Scene {
@@ -94,6 +97,7 @@ impl Scene {
         let fixed = resolve_boundary(&file, &mesh, &inv)?;
         let stages = resolve_stages(&file, &mesh, base, &inv)?;
         super::restraint::check_restraint(&mesh, &stages, &fixed).map_err(|m| inv("boundary", m))?;
+        let inputs = super::inputs::input_files(&file, base).map_err(|(key, m)| inv(&key, m))?;
 
         Ok(Scene {
             file,
@@ -106,6 +110,7 @@ impl Scene {
             fixed,
             hash: fnv1a(text.as_bytes()),
             base: base.to_path_buf(),
+            inputs,
         })
     }
 }
