@@ -446,6 +446,7 @@
 //! | `cfrd run ... --linear-solver iterative\|reduced_amg\|canonical_lu\|distributed_lu` | solves every stage with this linear solver instead of `solver.linear_solver` and the dynamic stages' `linear_solver`, without changing the scene: a long run continues from its checkpoint on another solver (its results then agree with the scene's to the solvers' tolerances, not bit for bit) |
 //! | `cfrd run ... -q` | prints nothing but errors |
 //! | `cfrd run ... --overwrite` | writes into a directory that holds another run's `results.h5`, `checkpoint.h5` or `summary.json` (its old checkpoint is removed first); without it such a directory is refused (exit code 2), and so is a restart from that directory's own checkpoint, which with `--overwrite` continues the results there (the steps before the checkpoint are kept). Temporary files of killed runs found there (`.results.h5.partial-<pid>` and the like) are named and removed. One run writes into a directory at a time: a run holds the lock of its `.cfrd.lock` (`flock`, released by the kernel when the run ends or is killed), and a second run into the same directory meanwhile exits 2 naming it (test `two_runs_into_one_output_directory_never_race`) |
+//! | `cfrd run ... --restart CHECKPOINT --accept-changed FILE` | continues although FILE (a mesh, partition or record file of the scene) changed since the checkpoint was written, which is otherwise refused (exit code 2); repeatable; the log and `summary.json` name it |
 //! | `cfrd check SCENE` | parses, validates and cross-checks the scene and its mesh without solving; prints the counts of nodes, elements, blocks, fixed DOFs and stages |
 //! | `cfrd schema` | prints the JSON Schema of the scene format |
 //! | `cfrd partition SCENE -n N -o FILE` | METIS partition for N ranks, written to `FILE`; the scene then names it in `partition:` |
@@ -508,7 +509,12 @@
 //!   built them at the quake's start (for a plastic dam they differ from the restored state's).
 //! * The checkpoint is written to a temporary file and renamed when complete, so an interrupted
 //!   write never damages the previous one. A checkpoint of another scene or mesh is refused
-//!   (exit 2).
+//!   (exit 2). It also names every file the scene reads (a Gmsh mesh, a partition, each
+//!   component of a record) with the hash of its content: a restart with one that changed is
+//!   refused (exit 2, naming the scene key and the file), so another record cannot be spliced
+//!   into a quake halfway; `--accept-changed FILE` goes on with it, and the log and
+//!   `summary.json` (`accepted_changed_inputs`) say so (test
+//!   `a_changed_record_or_partition_is_refused_at_restart`).
 //! * A run publishes its `results.h5` before every checkpoint (a complete copy, never a
 //!   half-written file), so a run that is killed keeps the results of every step up to its
 //!   checkpoint; a stage that fails leaves those of every stage it completed.

@@ -34,6 +34,8 @@
 //!                        scene text), mesh_hash (FNV-1a of coordinates, connectivity, blocks),
 //!                        n_nodes, n_elements, n_blocks, stages_done (completed stages, ≥ 1),
 //!                        last_stage (its name), n_ranks (informational), state_encoding = "postcard",
+//!                        input_files (a line `key<TAB>XXH3-64<TAB>path` per file the scene reads:
+//!                        mesh, partition, record components; absent in older checkpoints),
 //!                        attrs_checksum (XXH3-64 of the attributes above, hex)
 //!   u                    f64 [n_nodes, 3]       displacement (m) at the end of the last stage
 //!   f_prev               f64 [n_nodes, 3]       external force of the last stage (N), f_prev
