@@ -648,11 +648,12 @@ fn a_restart_into_its_own_directory_needs_overwrite_and_keeps_the_earlier_result
 fn a_changed_record_or_partition_is_refused_at_restart() {
     let dir = tempdir();
     let d = dir.path();
+    std::fs::write(d.join("plain.yaml"), quake_scene()).unwrap();
+    std::fs::write(d.join("record.csv"), "t,a_x,a_y,a_z\n0,0,0,0\n3,1,0,0\n").unwrap();
+    let o = cfrd(d, &["partition", "plain.yaml", "-n", "2", "-o", "parts.json"]);
+    assert!(o.status.success(), "{}", text(&o));
     let yaml = quake_scene().replace("units: SI\n", "units: SI\npartition: parts.json\n");
     std::fs::write(d.join("col.yaml"), &yaml).unwrap();
-    std::fs::write(d.join("record.csv"), "t,a_x,a_y,a_z\n0,0,0,0\n3,1,0,0\n").unwrap();
-    let o = cfrd(d, &["partition", "col.yaml", "-n", "2", "-o", "parts.json"]);
-    assert!(o.status.success(), "{}", text(&o));
     run_ok(
         2,
         d,
@@ -676,7 +677,7 @@ fn a_changed_record_or_partition_is_refused_at_restart() {
         std::fs::write(d.join(file), [&original[..], b"\n"].concat()).unwrap();
         let o = cfrd_mpi(2, d, &restart);
         assert_eq!(o.status.code(), Some(2), "{file}: {}", text(&o));
-        let named = format!("{key} ({}): its content changed", d.join(file).display());
+        let named = format!("{key} ({file}): its content changed");
         assert!(
             text(&o).contains(&named) && text(&o).contains("--accept-changed"),
             "{file}: {}",

@@ -210,8 +210,14 @@ mod tests {
             msg.contains("results.h5, checkpoint.h5, summary.json") && msg.contains("--overwrite"),
             "{msg}"
         );
-        prepare_output_dir(d, Some(&d.join("checkpoint.h5")), false).expect("restart from its checkpoint");
-        assert!(d.join("checkpoint.h5").exists());
+        let msg =
+            prepare_output_dir(d, Some(&d.join("checkpoint.h5")), false).expect_err("into its own directory");
+        assert!(msg.contains("pass --overwrite"), "{msg}");
+        prepare_output_dir(d, Some(&d.join("checkpoint.h5")), true).expect("restart from its checkpoint");
+        assert!(
+            d.join("checkpoint.h5").exists(),
+            "a restart keeps the checkpoint it reads"
+        );
         let other = dir_with(&["checkpoint.h5"]);
         prepare_output_dir(d, Some(&other.path().join("checkpoint.h5")), false)
             .expect_err("another checkpoint");
