@@ -325,34 +325,32 @@ stages:
 
 /// A 32-element GP rockfill column built in 4 layers under gravity, then a 3-s HHT-α quake
 /// (α = −0.1) with Rayleigh damping, all on the canonical solver.
-const GP_QUAKE: &str = "name: gp_quake
+fn gp_quake() -> String {
+    format!(
+        "name: gp_quake
 units: SI
 mesh:
-  box: { size: [10.0, 10.0, 40.0], divisions: [2, 2, 8], layers: 4 }
+  box: {{ size: [10.0, 10.0, 40.0], divisions: [2, 2, 8], layers: 4 }}
 materials:
-  fill: { model: rockfill_gp, density: 2150.0 }
+  fill: {{ model: rockfill_gp, density: 2150.0 }}
 blocks:
-  layer_1: { material: fill }
-  layer_2: { material: fill }
-  layer_3: { material: fill }
-  layer_4: { material: fill }
-boundary:
-  - { set: zmin, fix: [x, y, z] }
-  - { set: xmin, fix: [x] }
-  - { set: xmax, fix: [x] }
-  - { set: ymin, fix: [y] }
-  - { set: ymax, fix: [y] }
-loads:
-  gravity: { g: [0.0, 0.0, -9.81] }
-solver: { load_steps: 2, linear_solver: canonical_lu }
+  layer_1: {{ material: fill }}
+  layer_2: {{ material: fill }}
+  layer_3: {{ material: fill }}
+  layer_4: {{ material: fill }}
+{CONFINED_COLUMN_BOUNDARY}loads:
+  gravity: {{ g: [0.0, 0.0, -9.81] }}
+solver: {{ load_steps: 2, linear_solver: canonical_lu }}
 stages:
-  - { name: fill_1, activate: [layer_1] }
-  - { name: fill_2, activate: [layer_2] }
-  - { name: fill_3, activate: [layer_3] }
-  - { name: fill_4, activate: [layer_4] }
+  - {{ name: fill_1, activate: [layer_1] }}
+  - {{ name: fill_2, activate: [layer_2] }}
+  - {{ name: fill_3, activate: [layer_3] }}
+  - {{ name: fill_4, activate: [layer_4] }}
   - name: shake
-    dynamic: { record: record.csv, output_every: 10, hht_alpha: -0.1, linear_solver: canonical_lu, damping: { ratio: 0.05, frequencies: [1.0, 5.0] } }
-";
+    dynamic: {{ record: record.csv, output_every: 10, hht_alpha: -0.1, linear_solver: canonical_lu, damping: {{ ratio: 0.05, frequencies: [1.0, 5.0] }} }}
+"
+    )
+}
 
 /// `cfrd compare A B --tolerance T` of the runs `a` and `b` in `dir`: whether it passed, and
 /// its output.
@@ -367,7 +365,10 @@ fn compare_within(dir: &std::path::Path, a: &str, b: &str, tolerance: &str) -> (
 /// a plastic column, whose plastic path carries the rounding further), within 1e-9.
 #[test]
 fn quakes_on_the_canonical_solver_at_one_and_two_ranks() {
-    for (scene, seconds, statics) in [(ELASTIC_QUAKE, 10.0, "(place)"), (GP_QUAKE, 3.0, "(fill_")] {
+    for (scene, seconds, statics) in [
+        (ELASTIC_QUAKE.to_string(), 10.0, "(place)"),
+        (gp_quake(), 3.0, "(fill_"),
+    ] {
         let dir = tempdir();
         let d = dir.path();
         std::fs::write(d.join("scene.yaml"), scene).unwrap();
