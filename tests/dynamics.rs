@@ -1042,3 +1042,125 @@ fn the_crest_history_follows_the_centre_of_a_symmetric_embankments_crest() {
     let centre = [64.0, 60.0, 40.0];
     assert!(at.iter().zip(centre).all(|(a, c)| (a - c).abs() < 1e-9), "{at:?}");
 }
+
+/// The column shaken in two dynamic stages with a static stage between them, under one
+/// record each: the crest history (`quake_crest.csv`) runs over both on one clock (the second
+/// from 0.3 s on, its ground from its own record's start), its displacement counted from the
+/// state before the first (with what the static stage's lateral load moved),
+/// `quake_summary.json` names both stages and the crest's place; a
+/// run cut after the static stage and restarted from its checkpoint writes the same history
+/// byte for byte. A dynamic stage directly after another is refused (exit 2).
+#[test]
+fn crest_history_runs_over_every_dynamic_stage_on_one_clock() {
+    let _turn = mpi_turn();
+    let dir = tempdir();
+    let d = dir.path();
+    let record = |t: f64| 0.5 * (2.0 * PI * 2.0 * t).sin();
+    write_record(d, 0.01, 0.3, record);
+    column_scene(d, "{ record: record.csv, output_every: 10 }");
+    let yaml = std::fs::read_to_string(d.join("column.yaml"))
+        .unwrap()
+        .replace("units: SI\n", "units: SI\nloads:\n  gravity: { g: [0.0, 0.0, -9.81] }\n")
+        + "  - { name: settle, loads: { pressure: [ { faces: xmin, value: 1.0e4 } ] } }\n  - name: aftershock\n    dynamic: { record: record.csv, duration: 0.2, output_every: 10 }\n";
+    std::fs::write(d.join("column.yaml"), &yaml).unwrap();
+    run(2, d, "full");
+    let csv = std::fs::read_to_string(d.join("full/quake_crest.csv")).unwrap();
+    let rows: Vec<Vec<f64>> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(
+        rows.len(),
+        1 + 30 + 20,
+        "t = 0 and every time step of both stages"
+    );
+    assert!(rows.windows(2).all(|w| w[1][0] > w[0][0]), "increasing times");
+    assert!(
+        (rows[50][0] - 0.5).abs() < 1e-9,
+        "ends at 0.3 + 0.2 s: {}",
+        rows[50][0]
+    );
+    for (i, r) in rows.iter().enumerate() {
+        let local = if i <= 30 { r[0] } else { r[0] - 0.3 };
+        assert!(
+            (r[7] - record(local)).abs() < 1e-9,
+            "row {i}: ground {} at t = {}",
+            r[7],
+            r[0]
+        );
+    }
+    // the displacement since the first dynamic stage's start, in the results file
+    let (crest, _) = common::crest_node(&d.join("full"));
+    let h5 = d.join("full/results.h5");
+    let file = hdf5::File::open(&h5).unwrap();
+    let mut steps = file.group("/steps").unwrap().member_names().unwrap();
+    steps.sort();
+    let stage_of =
+        |s: &str| cfrd::io::results_reader::stage_name(&file.group(&format!("/steps/{s}")).unwrap()).unwrap();
+    let last_of = |stage: &str| steps.iter().rev().find(|s| stage_of(s) == stage).unwrap().clone();
+    let ux = |s: &str| read_f64(&h5, &format!("/steps/{s}/displacement"))[3 * crest];
+    let want = ux(&last_of("aftershock")) - ux(&last_of("place"));
+    let settled = ux(&last_of("settle")) - ux(&last_of("shake"));
+    assert!(
+        settled.abs() > 1e-4,
+        "the static stage moved the crest: {settled}"
+    );
+    assert!(
+        (rows[50][1] - want).abs() <= 1e-12 * want.abs(),
+        "u_x {} against {want}",
+        rows[50][1]
+    );
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(d.join("full/quake_summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["stages"], serde_json::json!(["shake", "aftershock"]));
+    assert_eq!(summary["residual_displacement_m"][0].as_f64(), Some(rows[50][1]));
+    assert_eq!(summary["crest_coordinates_m"][2].as_f64(), Some(H), "{summary}");
+    // cut after the static stage, restarted: the same history
+    let part = cfrd_mpi(
+        2,
+        d,
+        &[
+            "run",
+            "column.yaml",
+            "-o",
+            "part",
+            "-q",
+            "--stop-after-stage",
+            "3",
+        ],
+    );
+    assert!(part.status.success(), "{}", text(&part));
+    let rest = cfrd_mpi(
+        2,
+        d,
+        &[
+            "run",
+            "column.yaml",
+            "-o",
+            "rest",
+            "-q",
+            "--restart",
+            "part/checkpoint.h5",
+        ],
+    );
+    assert!(rest.status.success(), "{}", text(&rest));
+    let again = std::fs::read_to_string(d.join("rest/quake_crest.csv")).unwrap();
+    assert_eq!(again, csv, "the restarted run's crest history");
+    // directly one after the other: refused
+    std::fs::write(
+        d.join("column.yaml"),
+        yaml.replace(
+            "  - { name: settle, loads: { pressure: [ { faces: xmin, value: 1.0e4 } ] } }\n",
+            "",
+        ),
+    )
+    .unwrap();
+    let o = cfrd_mpi(2, d, &["check", "column.yaml"]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(
+        text(&o).contains("stages[2].dynamic") && text(&o).contains("start at rest"),
+        "{}",
+        text(&o)
+    );
+}

@@ -16,14 +16,15 @@ pub const LOCK_FILE: &str = ".cfrd.lock";
 /// released (a run refused before it wrote anything) is removed again.
 #[derive(Debug)]
 pub struct RunLock {
-    file: std::fs::File,
+    /// The locked file, held open for the run: closing it releases the lock.
+    _file: std::fs::File,
     dir: PathBuf,
     created_dir: bool,
 }
 
 impl RunLock {
     /// Creates `dir` if needed and takes the exclusive lock of its [`LOCK_FILE`]; an error
-    /// names the directory when another process holds it.
+    /// names the directory when another process holds it. A refused attempt removes nothing.
     pub fn acquire(dir: &Path) -> Result<RunLock, String> {
         let shown = dir.display();
         let created_dir = match std::fs::metadata(dir) {
@@ -31,32 +32,58 @@ impl RunLock {
             Ok(_) => false,
             Err(_) => true,
         };
-        std::fs::create_dir_all(dir).map_err(|e| format!("output directory {shown}: {e}"))?;
         let path = dir.join(LOCK_FILE);
-        let file = std::fs::OpenOptions::new()
-            .read(true)
-            .write(true)
-            .create(true)
-            .truncate(false)
-            .open(&path)
-            .map_err(|e| format!("output directory {shown}: cannot open {}: {e}", path.display()))?;
-        let lock = RunLock {
-            file,
-            dir: dir.to_path_buf(),
-            created_dir,
-        };
-        match lock.file.try_lock() {
-            Ok(()) => Ok(lock),
-            Err(std::fs::TryLockError::WouldBlock) => Err(format!(
-                "output directory {shown}: another cfrd run is writing into it (it holds {}); \
-                 wait until it ends, or choose another directory with -o",
-                path.display()
-            )),
-            Err(std::fs::TryLockError::Error(e)) => Err(format!(
-                "output directory {shown}: cannot lock {}: {e}",
-                path.display()
-            )),
+        // a run that ends removes the lock file (and the directory) it created when it wrote
+        // nothing else; one that opened the file before that holds the lock of an unlinked
+        // file, so it checks and tries again
+        for _ in 0..100 {
+            std::fs::create_dir_all(dir).map_err(|e| format!("output directory {shown}: {e}"))?;
+            let file = lock_file(&path, dir)?;
+            if still_at(&file, &path) {
+                return Ok(RunLock {
+                    _file: file,
+                    dir: dir.to_path_buf(),
+                    created_dir,
+                });
+            }
         }
+        Err(format!(
+            "output directory {shown}: {} keeps being replaced while it is locked",
+            path.display()
+        ))
+    }
+}
+
+/// Opens (creating) and locks the lock file `path` of `dir`.
+fn lock_file(path: &Path, dir: &Path) -> Result<std::fs::File, String> {
+    let shown = dir.display();
+    let file = std::fs::OpenOptions::new()
+        .read(true)
+        .write(true)
+        .create(true)
+        .truncate(false)
+        .open(path)
+        .map_err(|e| format!("output directory {shown}: cannot open {}: {e}", path.display()))?;
+    match file.try_lock() {
+        Ok(()) => Ok(file),
+        Err(std::fs::TryLockError::WouldBlock) => Err(format!(
+            "output directory {shown}: another cfrd run is writing into it (it holds {}); \
+             wait until it ends, or choose another directory with -o",
+            path.display()
+        )),
+        Err(std::fs::TryLockError::Error(e)) => Err(format!(
+            "output directory {shown}: cannot lock {}: {e}",
+            path.display()
+        )),
+    }
+}
+
+/// Whether the open `file` is still the file at `path` (not unlinked or replaced meanwhile).
+fn still_at(file: &std::fs::File, path: &Path) -> bool {
+    use std::os::unix::fs::MetadataExt;
+    match (file.metadata(), std::fs::metadata(path)) {
+        (Ok(a), Ok(b)) => a.dev() == b.dev() && a.ino() == b.ino(),
+        _ => false,
     }
 }
 
@@ -98,6 +125,7 @@ mod tests {
         let first = RunLock::acquire(&out).expect("first");
         let msg = RunLock::acquire(&out).expect_err("held");
         assert!(msg.contains("another cfrd run is writing into it"), "{msg}");
+        assert!(out.join(LOCK_FILE).exists(), "a refused attempt removes nothing");
         drop(first);
         assert!(
             !out.exists(),
@@ -107,5 +135,17 @@ mod tests {
         std::fs::write(out.join("results.h5"), b"x").unwrap();
         drop(again);
         assert!(out.join("results.h5").exists() && out.join(LOCK_FILE).exists());
+    }
+
+    #[test]
+    fn a_lock_of_a_file_unlinked_meanwhile_is_told_apart() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join(LOCK_FILE);
+        let file = lock_file(&path, dir.path()).expect("locked");
+        assert!(still_at(&file, &path));
+        std::fs::remove_file(&path).unwrap();
+        assert!(!still_at(&file, &path), "unlinked");
+        std::fs::write(&path, b"").unwrap();
+        assert!(!still_at(&file, &path), "replaced by another file");
     }
 }

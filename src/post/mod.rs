@@ -7,6 +7,7 @@
 //! | [`accuracy`] | `cfrd accuracy`: a run's slab table against a reference run's |
 //! | [`output`] | writing one table or figure into the output directory |
 //! | `quake` | the crest's history and summary of an earthquake stage (feature `native`) |
+//! | [`quake_clock`] | every dynamic stage of a scene on one time axis, for the quake's histories and figures |
 //! | `quake_fields` | an earthquake stage's fields read back from the results files (feature `native`) |
 //! | `quake_figures` | the dynamic outputs (the seed's Figs. 12–20) (feature `native`) |
 //! | `quake_probes` | the probes' histories through an earthquake (feature `native`) |
@@ -21,6 +22,7 @@ pub mod profiles;
 pub mod profiles_from_results;
 #[cfg(feature = "native")]
 pub mod quake;
+pub mod quake_clock;
 #[cfg(feature = "native")]
 pub mod quake_fields;
 #[cfg(feature = "native")]

@@ -7,15 +7,16 @@
 
 use crate::io::results_reader::{open, stage_name, step_names};
 use crate::plot::{Figure, Panel, Series};
+use crate::post::quake_clock::QuakeClock;
 use crate::scene::Scene;
 use std::path::{Path, PathBuf};
 
-/// The crest's history over the first dynamic stage of a run.
+/// The crest's history over the dynamic stages of a run, on the quake's clock ([`QuakeClock`]).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct CrestHistory {
     /// Index of the crest node ([`crest_node`]).
     pub node: usize,
-    /// Time in the stage (s) of every written step.
+    /// Time on the quake's clock (s) of every written step.
     pub t: Vec<f64>,
     /// Displacement relative to the base, minus the one before the quake (m).
     pub u: Vec<[f64; 3]>,
@@ -30,12 +31,16 @@ pub struct CrestHistory {
 pub struct QuakeSummary {
     /// Mesh id of the crest node.
     pub crest_node_id: u64,
+    /// Coordinates of the crest node (m; x, y, z).
+    pub crest_coordinates_m: [f64; 3],
+    /// The dynamic stages the history covers, in order, on one clock ([`QuakeClock`]).
+    pub stages: Vec<String>,
     /// Residual crest displacement, end of the quake minus before it (m; x, y, z).
     pub residual_displacement_m: [f64; 3],
     /// Peak absolute crest acceleration (m/s²; x, y, z) over every time step (over the
     /// results steps for a history read back from results files).
     pub peak_crest_acceleration: [f64; 3],
-    /// Peak ground acceleration of the record over the stage (m/s²; x, y, z).
+    /// Peak ground acceleration of the records over the dynamic stages (m/s²; x, y, z).
     pub peak_ground_acceleration: [f64; 3],
     /// Peak crest over peak ground acceleration per axis.
     pub amplification: [f64; 3],
@@ -104,14 +109,15 @@ pub fn crest_node(scene: &Scene) -> usize {
         .unwrap_or(0)
 }
 
-/// Reads the crest history of the first dynamic stage from the closed results file `h5`;
-/// `None` when the scene has no dynamic stage or the file no step of it.
+/// Reads the crest history of the dynamic stages from the closed results file `h5`, on the
+/// quake's clock ([`QuakeClock`]), the displacement counted from the last step of the stage
+/// before the first dynamic one; `None` when the scene has no dynamic stage or the file no
+/// step of one.
 pub fn crest_history(scene: &Scene, h5: &Path) -> Result<Option<CrestHistory>, String> {
-    let Some(k) = scene.stages.iter().position(|s| s.dynamic.is_some()) else {
+    let clock = QuakeClock::new(scene);
+    let Some(first) = clock.first() else {
         return Ok(None);
     };
-    let stage = &scene.stages[k];
-    let dynamic = stage.dynamic.as_ref().expect("a dynamic stage");
     let node = crest_node(scene);
     let file = open(h5)?;
     let mut before = [0.0; 3];
@@ -131,20 +137,23 @@ pub fn crest_history(scene: &Scene, h5: &Path) -> Result<Option<CrestHistory>, S
                 .ok_or_else(|| format!("{}: /steps/{name}/{field} is too short", h5.display()))
         };
         let this = stage_name(&g).unwrap_or_default();
-        if k > 0 && this == scene.stages[k - 1].name {
+        if first > 0 && this == scene.stages[first - 1].name {
             before = at("displacement")?;
-        } else if this == stage.name {
-            let time: f64 = g
-                .attr("time")
-                .and_then(|a| a.read_scalar())
-                .map_err(|e| e.to_string())?;
-            let t = (time - k as f64) * dynamic.duration;
-            let u = at("displacement")?;
-            hist.t.push(t);
-            hist.u.push(std::array::from_fn(|c| u[c] - before[c]));
-            hist.a.push(at("acceleration")?);
-            hist.ground.push(dynamic.ground_acceleration(t));
+            continue;
         }
+        let Some((k, _, dynamic, t0)) = clock.stages(scene).find(|(_, s, _, _)| s.name == this) else {
+            continue;
+        };
+        let time: f64 = g
+            .attr("time")
+            .and_then(|a| a.read_scalar())
+            .map_err(|e| e.to_string())?;
+        let local = (time - k as f64) * dynamic.duration;
+        let u = at("displacement")?;
+        hist.t.push(t0 + local);
+        hist.u.push(std::array::from_fn(|c| u[c] - before[c]));
+        hist.a.push(at("acceleration")?);
+        hist.ground.push(dynamic.ground_acceleration(local));
     }
     Ok((!hist.t.is_empty()).then_some(hist))
 }
@@ -155,21 +164,17 @@ pub fn summarize(scene: &Scene, h: &CrestHistory) -> QuakeSummary {
         std::array::from_fn(|c| v.iter().map(|x| x[c].abs()).fold(0.0, f64::max))
     };
     let dynamic = scene.stages.iter().find_map(|s| s.dynamic.as_ref());
-    let pga: [f64; 3] = match dynamic {
-        Some(d) => {
-            let n = (d.duration / d.record.dt()).round() as usize;
-            let samples: Vec<[f64; 3]> = (0..=n)
-                .map(|i| d.ground_acceleration(i as f64 * d.record.dt()))
-                .collect();
-            peak(&samples)
-        }
-        None => [0.0; 3],
-    };
+    let pga = QuakeClock::new(scene).peak_ground_acceleration(scene);
     let crest = peak(&h.a);
     let low = dynamic.and_then(|d| low_passed_peaks(h, d.dt()));
     let ratio = low.map(|l| std::array::from_fn(|c| if l[c] > 0.0 { crest[c] / l[c] } else { 0.0 }));
     QuakeSummary {
         crest_node_id: scene.mesh.node_ids[h.node],
+        crest_coordinates_m: scene.mesh.coords[h.node],
+        stages: QuakeClock::new(scene)
+            .stages(scene)
+            .map(|(_, s, _, _)| s.name.clone())
+            .collect(),
         residual_displacement_m: h.u.last().copied().unwrap_or_default(),
         peak_crest_acceleration: crest,
         peak_ground_acceleration: pga,

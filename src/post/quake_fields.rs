@@ -1,24 +1,26 @@
-//! The fields of a run's first earthquake stage read back from its results files: the state
-//! before the quake, every results step of it, and the residual state (after − before) that
-//! the dynamic figures draw ([`crate::post::quake_figures`]).
+//! The fields of a run's earthquake (its dynamic stages, on the quake's clock) read back from
+//! its results files: the state before the quake, every results step of it, and the residual
+//! state (after − before) that the dynamic figures draw ([`crate::post::quake_figures`]).
 
 use crate::io::results_reader::{open, stage_name, step_names};
 use crate::post::profiles::StageFields;
+use crate::post::quake_clock::QuakeClock;
 use crate::scene::Scene;
 use std::path::PathBuf;
 
 /// The fields of an earthquake stage as written to the results file.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct QuakeFields {
-    /// Name of the dynamic stage.
+    /// Names of the dynamic stages, joined by ", ".
     pub stage: String,
-    /// Time steps between two results steps (the stage's `output_every`, 0: its end only).
+    /// Time steps between two results steps (the first dynamic stage's `output_every`, 0: its
+    /// end only).
     pub output_every: u32,
-    /// Time step of the stage (s).
+    /// Time step of the first dynamic stage (s).
     pub dt: f64,
     /// The state before the quake (the last results step of the stage before).
     pub before: StageFields,
-    /// Time in the stage (s) of each results step of the quake.
+    /// Time on the quake's clock (s) of each results step of the quake.
     pub t: Vec<f64>,
     /// The fields of each results step of the quake, in order; the last one is the state after
     /// the quake when the stage completed.
@@ -41,7 +43,8 @@ impl QuakeFields {
             ),
         };
         format!(
-            "# sampled at the results steps of stage '{}': {every}; t = 0 is the state before the quake",
+            "# sampled at the results steps of {} '{}': {every}; t = 0 is the state before the quake",
+            stage_word(&self.stage),
             self.stage
         )
     }
@@ -57,26 +60,26 @@ impl QuakeFields {
     }
 }
 
-/// Reads the first earthquake stage of the closed results files `h5s`, the parts of one run in
-/// the order they ran (one file for a run in one go). A step found again in a later part (a run
-/// killed after it and restarted from an earlier checkpoint) replaces the earlier part's steps
-/// from its time on. `None` when the scene has no dynamic stage after another stage, or the
-/// files lack the state before the quake or any step of it.
+/// Reads the earthquake stages (every dynamic stage, on the quake's clock, [`QuakeClock`]) of
+/// the closed results files `h5s`, the parts of one run in the order they ran (one file for a
+/// run in one go). A step found again in a later part (a run killed after it and restarted
+/// from an earlier checkpoint) replaces the earlier part's steps from its time on. `None` when
+/// the scene has no dynamic stage after another stage, or the files lack the state before the
+/// quake or any step of it.
 pub fn read_quake_fields(scene: &Scene, h5s: &[PathBuf]) -> Result<Option<QuakeFields>, String> {
-    let Some(k) = scene.stages.iter().position(|s| s.dynamic.is_some()) else {
+    let clock = QuakeClock::new(scene);
+    let Some(first) = clock.first() else {
         return Ok(None);
     };
-    let Some(previous) = k.checked_sub(1).map(|p| scene.stages[p].name.as_str()) else {
+    let Some(previous) = first.checked_sub(1).map(|p| scene.stages[p].name.as_str()) else {
         return Ok(None);
     };
-    let stage = &scene.stages[k];
-    let dynamic = stage.dynamic.as_ref().expect("a dynamic stage");
-    let dt = dynamic.dt();
+    let dynamic = scene.stages[first].dynamic.as_ref().expect("a dynamic stage");
     let mut before = None;
     let mut q = QuakeFields {
-        stage: stage.name.clone(),
+        stage: clock.names(scene),
         output_every: dynamic.output_every,
-        dt,
+        dt: dynamic.dt(),
         ..Default::default()
     };
     for h5 in h5s {
@@ -86,19 +89,22 @@ pub fn read_quake_fields(scene: &Scene, h5s: &[PathBuf]) -> Result<Option<QuakeF
             let this = stage_name(&g).unwrap_or_default();
             if this == previous {
                 before = Some(StageFields::read(&g, h5, this)?);
-            } else if this == stage.name {
-                let time: f64 = g
-                    .attr("time")
-                    .and_then(|a| a.read_scalar())
-                    .map_err(|e| e.to_string())?;
-                let t = on_time_grid((time - k as f64) * dynamic.duration, dt);
-                while q.t.last().is_some_and(|&last| last >= t) {
-                    q.t.pop();
-                    q.steps.pop();
-                }
-                q.t.push(t);
-                q.steps.push(StageFields::read(&g, h5, this)?);
+                continue;
             }
+            let Some((k, _, d, t0)) = clock.stages(scene).find(|(_, s, _, _)| s.name == this) else {
+                continue;
+            };
+            let time: f64 = g
+                .attr("time")
+                .and_then(|a| a.read_scalar())
+                .map_err(|e| e.to_string())?;
+            let t = t0 + on_time_grid((time - k as f64) * d.duration, d.dt());
+            while q.t.last().is_some_and(|&last| last >= t) {
+                q.t.pop();
+                q.steps.pop();
+            }
+            q.t.push(t);
+            q.steps.push(StageFields::read(&g, h5, this)?);
         }
     }
     let Some(before) = before else {
@@ -106,6 +112,15 @@ pub fn read_quake_fields(scene: &Scene, h5s: &[PathBuf]) -> Result<Option<QuakeF
     };
     q.before = before;
     Ok((!q.steps.is_empty()).then_some(q))
+}
+
+/// "stage" for one stage name, "stages" for names joined by ", " ([`QuakeClock::names`]).
+pub(crate) fn stage_word(names: &str) -> &'static str {
+    if names.contains(", ") {
+        "stages"
+    } else {
+        "stage"
+    }
 }
 
 /// `t` snapped to the nearest multiple of `dt` when within 1e-6·dt of it (a step's time is

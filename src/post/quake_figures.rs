@@ -366,13 +366,10 @@ pub fn write_quake_figures(
     // a run restarted inside the quake lacks the state before it in its results, but its
     // probe histories are whole
     let probes = probe_elements(mesh, spec);
-    let stage = scene
-        .stages
-        .iter()
-        .find(|s| s.dynamic.is_some())
-        .map(|s| s.name.as_str());
-    let history = stage
-        .and_then(|stage| ProbeHistory::from_steps(stage, &probes, steps))
+    let clock = crate::post::quake_clock::QuakeClock::new(scene);
+    let stages = (!clock.is_empty()).then(|| clock.names(scene));
+    let history = stages
+        .and_then(|stages| ProbeHistory::from_steps(&stages, &probes, steps))
         .or_else(|| q.as_ref().map(|q| ProbeHistory::from_results(q, &probes)));
     if let Some(h) = history {
         write_probe_table(mesh, spec, &probes, dir, &mut files)?;

@@ -102,7 +102,7 @@ pub struct ProbeHistory {
 }
 
 impl ProbeHistory {
-    /// The history recorded at every time step of stage `stage` (`rows` of
+    /// The history recorded at every time step of the stages `stage` (`rows` of
     /// [`crate::solver::SolveReport::probes`]); `None` without rows or when a row does not fit
     /// `probes`.
     pub fn from_steps(stage: &str, probes: &[QuakeProbe], rows: &[Vec<f64>]) -> Option<Self> {
@@ -112,7 +112,8 @@ impl ProbeHistory {
         }
         Some(ProbeHistory {
             sampling: format!(
-                "# sampled at every converged time step of stage '{stage}' ({} rows); t = 0 is the state before the quake",
+                "# sampled at every converged time step of {} '{stage}' ({} rows); t = 0 is the state before the quake",
+                crate::post::quake_fields::stage_word(stage),
                 rows.len()
             ),
             rows: rows.to_vec(),

@@ -1,25 +1,29 @@
 //! The quake recorder: the crest's motion and the probes' state at every time step of the
-//! run's first dynamic stage, into the run's report (kept in step checkpoints, so a restarted
-//! run has the whole history), and the earthquake's tables and figures when the run ends.
+//! run's dynamic stages, on the quake's clock ([`crate::post::quake_clock`]), into the run's
+//! report (kept in step checkpoints, so a restarted run has the whole history), and the
+//! earthquake's tables and figures when the run ends.
 
 use super::observer::{Halt, Observer, Run, RunEnd, StageAt, StepAt};
 use super::options::RunFailure;
 use crate::parallel::{any_error, EXIT_IO, EXIT_SOLVER};
+use crate::post::quake_clock::QuakeClock;
 use crate::post::quake_probes::QuakeProbe;
 use crate::scene::Scene;
 use crate::solver::{Problem, SolveError, SolveReport};
 use mpi::topology::Communicator;
 use std::path::Path;
 
-/// Records the first dynamic stage of a run and writes its outputs.
+/// Records the dynamic stages of a run and writes their outputs.
 pub struct QuakeRecorder {
-    /// The first dynamic stage (index), if the scene has one.
-    stage: Option<usize>,
+    clock: QuakeClock,
     crest: usize,
     probes: Vec<QuakeProbe>,
-    /// The time step of the first dynamic stage: the probes' times are put on its grid, as
-    /// those of the results steps are ([`crate::post::quake_fields::on_time_grid`]).
-    dt: f64,
+    /// The time step of each stage (0 for a static one): the probes' times are put on its
+    /// grid, as those of the results steps are ([`crate::post::quake_fields::on_time_grid`]).
+    dt: Vec<f64>,
+    /// The crest's displacement at the current stage's start less the one at the first
+    /// dynamic stage's start (m): added to the rows of later dynamic stages.
+    shift: [f64; 3],
 }
 
 impl QuakeRecorder {
@@ -29,13 +33,14 @@ impl QuakeRecorder {
         let dt = scene
             .stages
             .iter()
-            .find_map(|s| s.dynamic.as_ref())
-            .map_or(0.0, |d| d.dt());
+            .map(|s| s.dynamic.as_ref().map_or(0.0, |d| d.dt()))
+            .collect();
         QuakeRecorder {
-            stage: scene.stages.iter().position(|s| s.dynamic.is_some()),
+            clock: QuakeClock::new(scene),
             crest: crate::post::quake::crest_node(scene),
             probes: crate::post::quake_probes::probe_elements(&scene.mesh, &spec),
             dt,
+            shift: [0.0; 3],
         }
     }
 
@@ -58,21 +63,39 @@ impl QuakeRecorder {
 }
 
 impl Observer for QuakeRecorder {
-    /// The probes at t = 0, the state before the quake.
+    /// The probes at t = 0, the state before the quake; at every dynamic stage's start (fresh
+    /// or resumed) the crest's shift from the first one's start.
     fn on_stage_start(&mut self, run: &mut Run<'_, '_>, at: &StageAt<'_>) -> Result<(), Halt> {
-        if self.stage == Some(at.k) && at.fresh {
+        if self.clock.start(at.k).is_none() {
+            return Ok(());
+        }
+        let here = run.problem.node_stage_start(self.crest);
+        let first = self.clock.first() == Some(at.k);
+        if first && at.fresh {
+            run.report.crest.clear();
             run.report.probes.clear();
             self.record_probes(run.problem, 0.0, run.report)?;
         }
+        if first || run.report.crest_quake_start.is_none() {
+            // a checkpoint written before the start was kept counts from its own stage
+            run.report.crest_quake_start = Some(here);
+        }
+        let start = run.report.crest_quake_start.unwrap_or(here);
+        self.shift = std::array::from_fn(|c| here[c] - start[c]);
         Ok(())
     }
 
-    /// The crest and the probes after a converged time step.
+    /// The crest and the probes after a converged time step of a dynamic stage.
     fn on_step(&mut self, run: &mut Run<'_, '_>, step: &StepAt<'_>) -> Result<(), Halt> {
-        if self.stage == Some(step.stage.k) {
-            let t = step.path.t;
-            run.report.crest.push(run.problem.node_motion(self.crest, t)?);
-            let on_grid = crate::post::quake_fields::on_time_grid(t, self.dt);
+        let k = step.stage.k;
+        if let Some(t0) = self.clock.start(k) {
+            let t = t0 + step.path.t;
+            let mut row = run.problem.node_motion(self.crest, t)?;
+            for c in 0..3 {
+                row[1 + c] += self.shift[c];
+            }
+            run.report.crest.push(row);
+            let on_grid = t0 + crate::post::quake_fields::on_time_grid(step.path.t, self.dt[k]);
             self.record_probes(run.problem, on_grid, run.report)?;
         }
         Ok(())
@@ -82,7 +105,7 @@ impl Observer for QuakeRecorder {
     /// ([`crate::post::quake_figures`]) from the closed results file (rank 0; collective
     /// decision). A failure to write them never hides the failure of a stage.
     fn on_finish(&mut self, run: &mut Run<'_, '_>, end: &RunEnd<'_>) -> Result<(), RunFailure> {
-        if self.stage.is_none() {
+        if self.clock.is_empty() {
             return Ok(());
         }
         let (scene, h5) = (run.scene, run.results_path.as_path());

@@ -41,7 +41,8 @@ pub(super) fn resolve_stages(
 
 /// Resolves `file.stages[k]` after the stages `before`; `placed` holds the stage that placed
 /// each block so far. A name used twice, an unknown block, a block placed twice, `load_steps`
-/// on a dynamic stage and a second modal analysis are errors.
+/// on a dynamic stage, a second modal analysis and a dynamic stage directly after another are
+/// errors.
 pub(super) fn resolve_stage(
     file: &SceneFile,
     mesh: &Mesh,
@@ -103,6 +104,18 @@ pub(super) fn resolve_stage(
                 "a modal analysis runs already in stage {} '{}'; a scene runs at most one",
                 first + 1,
                 before[first].name
+            ),
+        ));
+    }
+    if let (Some(_), Some(previous)) = (&dynamic, before.last().filter(|s| s.dynamic.is_some())) {
+        return Err(inv(
+            &format!("{stage_path}.dynamic"),
+            format!(
+                "a dynamic stage directly after the dynamic stage '{}' would start at rest (each \
+                 dynamic stage starts with zero velocity relative to the base) and cut its \
+                 motion off; make them one stage (a `duration` beyond the record gives a quiet \
+                 tail after it), or put a static stage between them",
+                previous.name
             ),
         ));
     }

@@ -190,6 +190,22 @@ impl<'a> Problem<'a> {
         Ok(out)
     }
 
+    /// The displacement (m) of node `node` (mesh index) at the start of the current stage,
+    /// relative to the base. Collective.
+    pub fn node_stage_start(&self, node: usize) -> [f64; 3] {
+        let owned = self
+            .model
+            .disc
+            .owned_nodes
+            .iter()
+            .position(|&n| n as usize == node);
+        let local = owned.map_or([0.0; 3], |i| {
+            std::array::from_fn(|c| self.u_stage_start[3 * i + c])
+        });
+        // one rank holds the node: the sums add zeros to its values, exactly
+        local.map(|v| crate::parallel::sum_f64(self.comm, v))
+    }
+
     /// Whether the current stage steps in load (static) or in time (dynamic).
     fn step_kind(&self) -> StepKind {
         match self.scene.stages[self.stage].dynamic {

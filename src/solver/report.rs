@@ -50,16 +50,21 @@ pub struct SolveReport {
     /// Wall-clock seconds of each completed stage, for the run summary.
     #[serde(default)]
     pub stage_seconds: Vec<StageSeconds>,
-    /// The crest's motion at every converged time step of the first dynamic stage
-    /// (recorded by the run's quake observer): `[t, u_x, u_y, u_z, a_x, a_y, a_z, ag_x, ag_y,
-    /// ag_z]`, u relative to the base and to the state before the quake (m), a absolute and a_g
-    /// the ground's (m/s²). Kept in step checkpoints, so a restarted run has the whole history.
+    /// The crest's motion at every converged time step of every dynamic stage (recorded by
+    /// the run's quake observer): `[t, u_x, u_y, u_z, a_x, a_y, a_z, ag_x, ag_y, ag_z]`, t on
+    /// the quake's clock ([`crate::post::quake_clock`]), u relative to the base and to the
+    /// state before the first dynamic stage (m), a absolute and a_g the ground's (m/s²). Kept
+    /// in step checkpoints, so a restarted run has the whole history.
     #[serde(default)]
     pub crest: Vec<[f64; 10]>,
+    /// The crest's displacement relative to the base at the start of the first dynamic stage
+    /// (m), from which [`SolveReport::crest`] counts its displacement in later dynamic stages.
+    #[serde(default)]
+    pub crest_quake_start: Option<[f64; 3]>,
     /// The probes' state at t = 0 of the first dynamic stage and at every converged time step
-    /// of it (recorded by the run's quake observer, for the seed's Figs. 14, 18–20): the time (s), then the values of
-    /// each probe in the order the observer found them. Kept in step
-    /// checkpoints like [`SolveReport::crest`].
+    /// of every dynamic stage (recorded by the run's quake observer, for the seed's Figs. 14,
+    /// 18–20): the time on the quake's clock (s), then the values of each probe in the order
+    /// the observer found them. Kept in step checkpoints like [`SolveReport::crest`].
     #[serde(default)]
     pub probes: Vec<Vec<f64>>,
 }
