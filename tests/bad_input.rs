@@ -517,7 +517,8 @@ fn a_compare_tolerance_that_is_not_a_finite_non_negative_number_exits_2() {
 }
 
 /// Negative numbers after a PETSc option are its value, not options of cfrd's; an option that
-/// no solver object read is named in a warning.
+/// no solver object read is named in a warning, but not `-log_view`, which PETSc reads when it
+/// finalizes.
 #[test]
 fn negative_petsc_option_values_reach_petsc() {
     let dir = tempdir();
@@ -541,6 +542,11 @@ fn negative_petsc_option_values_reach_petsc() {
         "{}",
         text(&o)
     );
+    // PETSc reads -log_view when it finalizes: not named, and its performance log is printed
+    let o = cfrd(dir.path(), &["run", "scene.yaml", "-o", "d", "-q", "-log_view"]);
+    assert!(o.status.success(), "{}", text(&o));
+    assert!(!text(&o).contains("not used"), "{}", text(&o));
+    assert!(text(&o).contains("PETSc Performance Summary"), "{}", text(&o));
 }
 
 /// A directory given to `--restart` is one clear line, not the MPI-IO error stack.

@@ -302,6 +302,34 @@ fn bad_modal_input_exits_2_naming_the_place() {
     }
 }
 
+/// A modal or dynamic stage before any block is placed says so (exit 2) instead of failing on
+/// "0 free DOFs".
+#[test]
+fn a_modal_or_dynamic_stage_before_any_block_is_placed_exits_2_saying_so() {
+    let cases = [
+        (
+            "  - { name: m, modal: { modes: 2 } }\n",
+            "stages[0]: a modal analysis needs placed blocks",
+        ),
+        (
+            "  - { name: q, dynamic: { record: r.csv } }\n",
+            "stages[0]: a dynamic stage needs placed blocks",
+        ),
+    ];
+    for (stages, expect) in cases {
+        let dir = tempdir();
+        std::fs::write(dir.path().join("r.csv"), "t,a_x,a_y,a_z\n0,0,0,0\n0.01,0,0,0\n").unwrap();
+        column_scene(dir.path(), 4, 1, stages);
+        let o = cfrd_mpi(2, dir.path(), &["check", "column.yaml"]);
+        assert_eq!(o.status.code(), Some(2), "{stages}: {}", text(&o));
+        assert!(
+            text(&o).contains(expect),
+            "{stages}: lacks '{expect}':\n{}",
+            text(&o)
+        );
+    }
+}
+
 #[test]
 fn a_quake_damped_on_modes_restarts_bitwise_from_a_step_checkpoint() {
     // the restart recomputes the modes of the restored state: for the elastic column the same

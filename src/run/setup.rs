@@ -94,8 +94,8 @@ pub fn start_solver<'a>(
         message: e.to_string(),
     })?;
     let opt_result = petsc
-        .insert_options(&scene.file.solver.petsc_options)
-        .and_then(|_| petsc.insert_options(&petsc_options.join(" ")));
+        .insert_run_options(&scene.file.solver.petsc_options)
+        .and_then(|_| petsc.insert_run_options(&petsc_options.join(" ")));
     any_error(world, opt_result).map_err(|m| input(format!("PETSc options: {m}")))?;
     let setup = Problem::new(&petsc, world, scene, cells, disc);
     let problem = any_error(world, setup).map_err(|m| input(format!("setting up the solver: {m}")))?;
@@ -197,14 +197,56 @@ pub fn restart(
 }
 
 /// Prints (rank 0, also with `-q`) the PETSc options that no solver object read during the
-/// run: a misspelled option (`-ksp_rtoll`) would otherwise be ignored without a word.
+/// run: a misspelled option (`-ksp_rtoll`) would otherwise be ignored without a word. The
+/// options PETSc reads only when it finalizes, after this check ([`read_at_finalize`]), are
+/// not named.
 pub fn warn_unused_options(rank: i32, petsc: &Petsc) {
-    match petsc.unused_options() {
+    let left = petsc
+        .unused_options()
+        .map(|l| l.into_iter().filter(|o| !read_at_finalize(o)).collect::<Vec<_>>());
+    match left {
         Ok(left) if rank == 0 && !left.is_empty() => eprintln!(
             "warning: PETSc option(s) set but not used by any solver object: {} (misspelled, \
              or for a solver this run does not use)",
             left.join(", ")
         ),
         _ => {}
+    }
+}
+
+/// Whether the option `-name [value]` is one PETSc reads when it finalizes (`PetscFinalize`:
+/// the performance log `-log_view` and its kin, the option and memory reports), so that it
+/// is still unread when the run checks for unused options.
+pub fn read_at_finalize(option: &str) -> bool {
+    let name = option
+        .trim_start_matches('-')
+        .split_whitespace()
+        .next()
+        .unwrap_or("");
+    name.starts_with("log_")
+        || matches!(
+            name,
+            "options_left" | "options_view" | "malloc_dump" | "malloc_view" | "memory_view" | "objects_dump"
+        )
+}
+
+#[cfg(test)]
+mod finalize_tests {
+    use super::read_at_finalize;
+
+    #[test]
+    fn the_options_petsc_reads_at_finalize_are_told_apart_from_misspelled_ones() {
+        for o in [
+            "-log_view",
+            "-log_view :perf.txt",
+            "-log_view_memory",
+            "-options_left",
+            "-malloc_dump",
+        ] {
+            assert!(read_at_finalize(o), "{o}");
+        }
+        for o in ["-ksp_rtoll 1e-8", "-logview", "-pc_type lu", "-snes_monitor"] {
+            assert!(!read_at_finalize(o), "{o}");
+        }
     }
 }

@@ -41,8 +41,8 @@ pub(super) fn resolve_stages(
 
 /// Resolves `file.stages[k]` after the stages `before`; `placed` holds the stage that placed
 /// each block so far. A name used twice, an unknown block, a block placed twice, `load_steps`
-/// on a dynamic stage, a second modal analysis and a dynamic stage directly after another are
-/// errors.
+/// on a dynamic stage, a second modal analysis, a modal or dynamic stage before any block is
+/// placed and a dynamic stage directly after another are errors.
 pub(super) fn resolve_stage(
     file: &SceneFile,
     mesh: &Mesh,
@@ -104,6 +104,21 @@ pub(super) fn resolve_stage(
                 "a modal analysis runs already in stage {} '{}'; a scene runs at most one",
                 first + 1,
                 before[first].name
+            ),
+        ));
+    }
+    if (modal.is_some() || dynamic.is_some()) && placed.iter().all(Option::is_none) {
+        let what = if modal.is_some() {
+            "modal analysis"
+        } else {
+            "dynamic stage"
+        };
+        return Err(inv(
+            &stage_path,
+            format!(
+                "a {what} needs placed blocks, but no block is placed by stage '{}': list the \
+                 blocks in `activate` of this stage or of a stage before it",
+                st.name
             ),
         ));
     }

@@ -69,6 +69,31 @@ impl Petsc {
         call!(PetscOptionsInsertString(null_mut(), c.as_ptr()))
     }
 
+    /// Inserts `options` as [`Petsc::insert_options`] does, and starts PETSc's performance
+    /// log when they ask for it (`-log_view` and its kin) and it was not running: PETSc starts
+    /// it in `PetscInitialize` only, for options given to it there, so `-log_view` inserted
+    /// later would print nothing.
+    pub fn insert_run_options(&self, options: &str) -> Result<(), PetscError> {
+        let before = self.has_option("-log_view")?;
+        self.insert_options(options)?;
+        if !before && self.has_option("-log_view")? {
+            call!(PetscLogDefaultBegin())?;
+        }
+        Ok(())
+    }
+
+    /// Whether the options database holds `name` (with or without a value).
+    fn has_option(&self, name: &str) -> Result<bool, PetscError> {
+        let c = CString::new(name).map_err(|_| PetscError {
+            code: -1,
+            call: "PetscOptionsHasName",
+            message: "option name contains a NUL byte".into(),
+        })?;
+        let mut set = p::PETSC_FALSE;
+        call!(PetscOptionsHasName(null_mut(), null(), c.as_ptr(), &mut set))?;
+        Ok(set == p::PETSC_TRUE)
+    }
+
     /// Options set (in the scene or on the command line) that no PETSc object has read so far,
     /// as `-name value` (PETSc's own unused-option record, `PetscOptionsLeftGet`): at the end of
     /// a run, misspelled options or options of a solver the run did not use.
