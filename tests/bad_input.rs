@@ -770,3 +770,41 @@ fn two_runs_into_one_output_directory_never_race() {
         );
     }
 }
+
+/// `cfrd accel` exits 4 when it cannot write its outputs, and refuses at once (exit 2, naming
+/// `dt`) a valid spec whose record would be too long to make in reasonable time.
+#[test]
+fn cfrd_accel_exits_4_when_it_cannot_write_and_2_for_a_record_too_long() {
+    let dir = tempdir();
+    let d = dir.path();
+    let seed = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("inputs/accel/seed_quake.yaml"),
+    )
+    .unwrap();
+    std::fs::write(
+        d.join("short.yaml"),
+        seed.replace("duration: 20.0", "duration: 6.0")
+            .replace("t2: 12.0", "t2: 4.0")
+            .replace("t1: 2.0", "t1: 1.0"),
+    )
+    .unwrap();
+    std::fs::write(d.join("a_file"), b"").unwrap();
+    let o = cfrd(d, &["accel", "short.yaml", "-o", "a_file/out"]);
+    assert_eq!(o.status.code(), Some(4), "{}", text(&o));
+    assert!(text(&o).contains("a_file"), "{}", text(&o));
+    std::fs::write(
+        d.join("huge.yaml"),
+        seed.replace("duration: 20.0", "duration: 600.0")
+            .replace("dt: 0.01", "dt: 0.0001"),
+    )
+    .unwrap();
+    let t0 = std::time::Instant::now();
+    let o = cfrd(d, &["accel", "huge.yaml", "-o", "out"]);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(
+        text(&o).contains("dt: 600 s at dt = 0.0001 s is 6000001 samples"),
+        "{}",
+        text(&o)
+    );
+    assert!(t0.elapsed().as_secs() < 5, "refused at once: {:?}", t0.elapsed());
+}

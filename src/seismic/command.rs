@@ -70,11 +70,13 @@ pub enum AccelError {
 }
 
 impl AccelError {
-    /// Exit code of the command: 2 for bad input, 1 otherwise.
+    /// Exit code of the command: 2 for bad input, 4 when an output cannot be written, 1 when
+    /// the generator fails.
     pub fn exit_code(&self) -> u8 {
         match self {
             AccelError::Read { .. } | AccelError::Parse { .. } | AccelError::Invalid { .. } => 2,
-            AccelError::Generate { .. } | AccelError::Write { .. } => 1,
+            AccelError::Write { .. } => 4,
+            AccelError::Generate { .. } => 1,
         }
     }
 }
@@ -170,6 +172,11 @@ pub fn run_file(path: &Path, out_dir: &Path) -> Result<AccelSummary, AccelError>
     })?;
     let mut records = Vec::new();
     for r in &resolved.records {
+        eprintln!(
+            "record '{}': {} samples per component, generating",
+            r.name,
+            resolved.settings.n_samples()
+        );
         let generated =
             generate_record(&resolved.targets, &resolved.settings, r.seed).map_err(|e| match e {
                 GeneratorError::Invalid(p) => AccelError::Invalid {
