@@ -17,7 +17,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 RUNS=${1:-100000}
-TARGETS=${TARGETS:-scene gmsh accel_csv accel_at2 state_codec}
+TARGETS=${TARGETS:-scene gmsh accel_csv accel_at2 state_codec lock_file checkpoint_inputs}
 FUZZ=tests/fuzz
 LOGS=out/fuzz
 BIN=$FUZZ/target/x86_64-unknown-linux-gnu/release

@@ -15,6 +15,8 @@
 //! | [`accel_csv`] | [`Accelerogram::from_csv_str`] | `stages[k].dynamic.record` |
 //! | [`accel_at2`] | [`crate::seismic::at2::parse_at2`], then [`Accelerogram::from_components`] | `stages[k].dynamic.record: { x, y, z }` |
 //! | [`state_codec()`] | [`crate::solver::state_codec`] decoders of every model | a checkpoint's `states` rows |
+//! | [`lock_file`] | [`crate::dir_lock::RunLock::acquire`] over whatever stands at the lock's path | `cfrd run -o OUT` |
+//! | [`checkpoint_inputs`] | [`crate::scene::inputs::changed`] on a checkpoint's `input_files` text | `cfrd run --restart` |
 
 use crate::material::elastic::ElasticParams;
 use crate::material::{InterfaceParams, SolidParams};
@@ -218,15 +220,98 @@ fn interface_codec(model: u8, e: usize, encoded: &[u8]) -> Outcome {
     Outcome::Accepted
 }
 
+/// The output directory's lock ([`crate::dir_lock::RunLock::acquire`]) with what stands at the
+/// lock file's path made from the bytes: the first byte picks it (modulo 5: nothing, a regular
+/// file holding the other bytes, a directory, a symbolic link to a file holding them, a
+/// dangling symbolic link), in a fresh directory under the system's temporary folder.
+/// Accepted when the lock is taken. What was there must be left as it was: a file's bytes, a
+/// link's target, and no file made where a dangling link points (a failure panics, as a bug).
+pub fn lock_file(bytes: &[u8]) -> Outcome {
+    static NEXT: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+    let [kind, content @ ..] = bytes else {
+        return Outcome::Rejected;
+    };
+    let n = NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let root = std::env::temp_dir().join(format!("cfrd-fuzz-lock-{}-{n}", std::process::id()));
+    let (out, target) = (root.join("out"), root.join("target"));
+    let lock = out.join(crate::dir_lock::LOCK_FILE);
+    std::fs::create_dir_all(&out).expect("a fresh directory");
+    let made = match kind % 5 {
+        0 => Ok(()),
+        1 => std::fs::write(&lock, content),
+        2 => std::fs::create_dir(&lock),
+        3 => std::fs::write(&target, content).and_then(|()| std::os::unix::fs::symlink(&target, &lock)),
+        _ => std::os::unix::fs::symlink(&target, &lock),
+    };
+    made.expect("the lock path prepared");
+    let outcome = Outcome::of(crate::dir_lock::RunLock::acquire(&out));
+    match kind % 5 {
+        1 => assert_eq!(
+            std::fs::read(&lock).expect("the file kept"),
+            content,
+            "the lock file's bytes changed"
+        ),
+        3 => assert_eq!(
+            std::fs::read(&target).expect("the target kept"),
+            content,
+            "a link's target changed"
+        ),
+        4 => assert!(!target.exists(), "a file was made where a dangling link points"),
+        _ => {}
+    }
+    let _ = std::fs::remove_dir_all(&root);
+    outcome
+}
+
+/// A checkpoint's `input_files` text ([`crate::scene::inputs::to_text`]) from the bytes
+/// (invalid UTF-8 replaced) through [`crate::scene::inputs::changed`] against the input files of
+/// a scene with a mesh file and a record, one of them accepted. Accepted when nothing changed.
+/// Every change named must be a key of the text (a failure panics, as a bug).
+pub fn checkpoint_inputs(bytes: &[u8]) -> Outcome {
+    use crate::scene::inputs::{changed, InputFile};
+    let stored = String::from_utf8_lossy(bytes);
+    let base = scene_base();
+    let now = [
+        InputFile {
+            key: "mesh.file".into(),
+            path: base.join("../meshes/two_hex_v41.msh"),
+            hash: "00000000000000aa".into(),
+        },
+        InputFile {
+            key: "stages[1].dynamic.record".into(),
+            path: base.join("../accel/seed_quake.csv"),
+            hash: "00000000000000bb".into(),
+        },
+    ];
+    let accepted = [base.join("../accel/seed_quake.csv")];
+    let found = changed(&stored, &now, &accepted);
+    let keys: Vec<&str> = stored
+        .lines()
+        .map(|l| l.split('\t').next().unwrap_or(""))
+        .collect();
+    for (key, _, _) in &found {
+        assert!(
+            keys.contains(&key.as_str()),
+            "a change named for a key the text lacks: {key}"
+        );
+    }
+    match found.is_empty() {
+        true => Outcome::Accepted,
+        false => Outcome::Rejected,
+    }
+}
+
 /// The entry function of a fuzz target: one input's bytes in, what the reader did out.
 pub type Entry = fn(&[u8]) -> Outcome;
 
 /// The fuzz targets by name (the folder names of `tests/fuzz/corpus`), each with its entry
 /// function.
-pub const TARGETS: [(&str, Entry); 5] = [
+pub const TARGETS: [(&str, Entry); 7] = [
     ("scene", scene),
     ("gmsh", gmsh),
     ("accel_csv", accel_csv),
     ("accel_at2", accel_at2),
     ("state_codec", state_codec),
+    ("lock_file", lock_file),
+    ("checkpoint_inputs", checkpoint_inputs),
 ];

@@ -219,7 +219,18 @@
 //! * a `duration` past the record's end is a rule, not an error: from the record's last sample
 //!   on the ground is at rest (zero ground acceleration), a quiet tail in which the dam vibrates
 //!   freely, and the log says so ("record ends at 20 s; from 20 to 25 s the ground is at rest");
-//! * `damping` gives its ratio with one of `frequencies: [f1, f2]` or `modes: [i, j]`.
+//! * `damping` gives its ratio with one of `frequencies: [f1, f2]` or `modes: [i, j]`;
+//! * a dynamic stage starts at rest relative to the base, so one directly after another would
+//!   cut the motion off: it is refused; join them in one stage (a `duration` past the record
+//!   gives the quiet tail), or put a static stage between them (an aftershock after a
+//!   settlement stage);
+//! * a modal or dynamic stage before any block is placed is refused.
+//!
+//! The quake's outputs (`quake_crest.csv`, `quake_summary.json`, the probe histories and the
+//! dynamic figures) cover every dynamic stage on one clock: the first starts at t = 0, each
+//! later one where the dynamic stage before it ended; displacements count from the state
+//! before the first one, and `quake_summary.json` names the stages (`stages`) and the crest's
+//! node and coordinates (`dynamics::crest_history_runs_over_every_dynamic_stage_on_one_clock`).
 //!
 //! A dynamic stage has its own `linear_solver` and, if given, its own `newton_tol`; the static
 //! stages' `solver.linear_solver` and `solver.newton_tol` do not reach it. The seed quake
@@ -315,7 +326,11 @@
 //! A results step inside stage k (1-based) at time t of its duration D has the step time
 //! k − 1 + t/D and a label with t in seconds. `cfrd accel SPEC.yaml -o DIR` generates
 //! spectrum-compatible records from the hydraulic code's design spectrum
-//! ([`crate::seismic`], `inputs/accel/seed_quake.yaml`).
+//! ([`crate::seismic`], `inputs/accel/seed_quake.yaml`): at most
+//! [`crate::seismic::spec::MAX_RECORD_SAMPLES`] samples per component (600 s at 0.01 s), a
+//! longer spec refused at once naming `dt`; exit code 1 when a record misses the spectrum's
+//! acceptance, 2 for bad input, 4 when an output cannot be written
+//! (`bad_input::cfrd_accel_exits_4_when_it_cannot_write_and_2_for_a_record_too_long`).
 //!
 //! ## Linear solvers and PETSc options
 //!
@@ -403,7 +418,9 @@
 //! with more than one letter is a PETSc option, taking the next word as its value unless that
 //! is an option or a YAML file (a negative number is a value), and options on the command line
 //! override the scene's. An option that no solver object read during the run (misspelled, or
-//! for a solver the run does not use) is named in a warning at its end:
+//! for a solver the run does not use) is named in a warning at its end; `-log_view` (PETSc's
+//! performance log, printed when the run ends) and the other options PETSc reads only when it
+//! finalizes are not (`bad_input::negative_petsc_option_values_reach_petsc`):
 //!
 //! ```sh
 //! mpirun -n 8 cfrd run dam.yaml -o out/dam -ksp_type gmres -pc_type hypre
@@ -446,7 +463,7 @@
 //! | `cfrd run ... --integration-tol-ratio R` | caps the GP substepping tolerance at R·newton_tol, as `solver.integration_tol_ratio` does, without changing the scene |
 //! | `cfrd run ... --linear-solver iterative\|reduced_amg\|canonical_lu\|distributed_lu` | solves every stage with this linear solver instead of `solver.linear_solver` and the dynamic stages' `linear_solver`, without changing the scene: a long run continues from its checkpoint on another solver (its results then agree with the scene's to the solvers' tolerances, not bit for bit) |
 //! | `cfrd run ... -q` | prints nothing but errors |
-//! | `cfrd run ... --overwrite` | writes into a directory that holds another run's `results.h5`, `checkpoint.h5` or `summary.json` (its old checkpoint is removed first); without it such a directory is refused (exit code 2), and so is a restart from that directory's own checkpoint, which with `--overwrite` continues the results there (the steps before the checkpoint are kept). Temporary files of killed runs found there (`.results.h5.partial-<pid>` and the like) are named and removed. One run writes into a directory at a time: a run holds the lock of its `.cfrd.lock` (`flock`, released by the kernel when the run ends or is killed), and a second run into the same directory meanwhile exits 2 naming it (test `two_runs_into_one_output_directory_never_race`) |
+//! | `cfrd run ... --overwrite` | writes into a directory that holds another run's `results.h5`, `checkpoint.h5` or `summary.json` (its old checkpoint is removed first); without it such a directory is refused (exit code 2), and so is a restart from that directory's own checkpoint, which with `--overwrite` continues the results there (the steps before the checkpoint are kept). Temporary files of killed runs found there (`.results.h5.partial-<pid>` and the like) are named and removed. One run writes into a directory at a time: a run holds the lock of its `.cfrd.lock` (`flock`, released by the kernel when the run ends or is killed), and a second run into the same directory meanwhile exits 2 naming it, removing nothing (test `two_runs_into_one_output_directory_never_race`); a `.cfrd.lock` that is not a regular file (a directory, a symbolic link) is refused naming it |
 //! | `cfrd run ... --restart CHECKPOINT --accept-changed FILE` | continues although FILE (a mesh, partition or record file of the scene) changed since the checkpoint was written, which is otherwise refused (exit code 2); repeatable; the log and `summary.json` name it |
 //! | `cfrd check SCENE` | parses, validates and cross-checks the scene and its mesh without solving; prints the counts of nodes, elements, blocks, fixed DOFs and stages |
 //! | `cfrd schema` | prints the JSON Schema of the scene format |
@@ -636,6 +653,8 @@
 //! | `accel_csv` | [`crate::seismic::Accelerogram::from_csv_str`] (a dynamic stage's `record`) | `inputs/accel`, `tests/fuzz/seeds/accel_csv` |
 //! | `accel_at2` | [`crate::seismic::at2::parse_at2`], then a three-component record | hand-written PEER AT2 samples |
 //! | `state_codec` | the checkpoint's decoders of the integration-point states of every model ([`crate::solver::state_codec`]), with a re-encoding round trip | the encoded initial states of every model |
+//! | `lock_file` | the output directory's lock ([`crate::dir_lock::RunLock::acquire`]) over whatever stands at `OUT/.cfrd.lock`: nothing, a file of any bytes, a directory, a link; the file's bytes and a link's target left as they were | `tests/fuzz/seeds/lock_file` |
+//! | `checkpoint_inputs` | a checkpoint's `input_files` text against a scene's input files ([`crate::scene::inputs::changed`]), every change named a key of the text | `tests/fuzz/seeds/checkpoint_inputs` |
 //!
 //! An `Err` is the right answer to bad input; a panic, an abort (out of memory, a capacity
 //! overflow, a sanitizer report) or an input that runs longer than 10 s is a bug. Scenes that

@@ -34,6 +34,7 @@
 
 pub mod architecture;
 pub mod conventions;
+pub mod dir_lock;
 pub mod element;
 pub mod error;
 pub mod fuzzing;

@@ -90,6 +90,16 @@ fn state_codec_corpus_replays() {
     replay_target("state_codec");
 }
 
+#[test]
+fn lock_file_corpus_replays() {
+    replay_target("lock_file");
+}
+
+#[test]
+fn checkpoint_inputs_corpus_replays() {
+    replay_target("checkpoint_inputs");
+}
+
 /// The harness reaches the decoders' success path: the encoded initial states of every model
 /// are accepted (so the campaign's seeds are valid checkpoint rows).
 #[test]
