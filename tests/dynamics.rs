@@ -1164,3 +1164,47 @@ fn crest_history_runs_over_every_dynamic_stage_on_one_clock() {
         text(&o)
     );
 }
+
+/// A dynamic stage that places a block reports the motion of its nodes at its end (their
+/// displacement counts from the stage's start), not zeros from the placement rule: the
+/// column's upper half placed by the quake stage itself, its top's displacement at the
+/// stage's end is that of the crest history's last row.
+#[test]
+fn a_dynamic_stage_that_places_a_block_reports_its_motion_at_its_end() {
+    let _turn = mpi_turn();
+    let dir = tempdir();
+    let d = dir.path();
+    write_record(d, 0.01, 0.3, |t| 0.5 * (2.0 * PI * 2.0 * t).sin());
+    let scene = format!(
+        "name: two_lifts\nunits: SI\n\
+         mesh:\n  box: {{ size: [2.5, 2.5, {H}], divisions: [1, 1, 20], layers: 2 }}\n\
+         materials:\n  soil: {{ model: elastic, young: 2.0e8, poisson: 0.25, density: 2000.0 }}\n\
+         blocks:\n  layer_*: {{ material: soil }}\n\
+         boundary:\n  - {{ set: zmin, fix: [x, y, z] }}\n  - {{ set: xmin, fix: [y, z] }}\n  - {{ set: xmax, fix: [y, z] }}\n\
+         solver: {{ petsc_options: '-ksp_type preonly -pc_type lu' }}\n\
+         stages:\n  - {{ name: place, activate: [layer_1] }}\n  - name: shake\n    activate: [layer_2]\n    dynamic: {{ record: record.csv, output_every: 10 }}\n"
+    );
+    std::fs::write(d.join("column.yaml"), scene).unwrap();
+    run(2, d, "out");
+    let h5 = d.join("out/results.h5");
+    let (top, _) = common::crest_node(&d.join("out"));
+    let file = hdf5::File::open(&h5).unwrap();
+    let mut steps = file.group("/steps").unwrap().member_names().unwrap();
+    steps.sort();
+    let last = steps.last().unwrap();
+    let ux = read_f64(&h5, &format!("/steps/{last}/displacement"))[3 * top];
+    let csv = std::fs::read_to_string(d.join("out/quake_crest.csv")).unwrap();
+    let row: Vec<f64> = csv
+        .lines()
+        .last()
+        .unwrap()
+        .split(',')
+        .map(|v| v.parse().unwrap())
+        .collect();
+    println!(
+        "top u_x at the quake's end: results {ux:.6e}, crest history {:.6e}",
+        row[1]
+    );
+    assert!(ux.abs() > 1e-6, "the top's motion is reported: {ux}");
+    assert!((ux - row[1]).abs() <= 1e-12 * ux.abs(), "{ux} against {}", row[1]);
+}

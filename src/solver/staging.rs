@@ -197,18 +197,23 @@ impl Problem<'_> {
     }
 
     /// Ends the current stage: its loads become the starting loads of the next one, and the
-    /// nodes it placed get their current displacement as the zero of their reported
-    /// displacement (a new lift's surface starts level; settlement counts from its placement).
+    /// nodes it placed get the zero of their reported displacement: a static stage's current
+    /// displacement (a new lift's surface starts level; settlement counts from its
+    /// placement), a dynamic stage's displacement at its start, so that the motion of the
+    /// quake is reported on the blocks it placed too.
     pub fn end_stage(&mut self) -> Result<(), SolveError> {
         self.f_ext_kept = None;
         self.loads
             .end_stage(&self.model, &self.scene.stages[self.stage].terms)?;
-        let u_own: Vec<f64> = self.model.u.read(|s| s.to_vec())?;
+        let zero: Vec<f64> = match self.scene.stages[self.stage].dynamic {
+            Some(_) => self.u_stage_start.clone(),
+            None => self.model.u.read(|s| s.to_vec())?,
+        };
         let staged = !self.scene.file.stages.is_empty();
         let reset = staged && self.scene.file.output.placed_nodes == PlacedNodes::EndOfStage;
         for (i, &n) in self.model.disc.owned_nodes.iter().enumerate() {
             if reset && self.model.node_active[n as usize] && !self.node_was_active[i] {
-                self.node_offset[i] = [u_own[3 * i], u_own[3 * i + 1], u_own[3 * i + 2]];
+                self.node_offset[i] = [zero[3 * i], zero[3 * i + 1], zero[3 * i + 2]];
             }
         }
         Ok(())
