@@ -505,6 +505,8 @@ pub enum PlacedNodes {
     /// From the end of the stage that placed them: the surface of a new lift starts level and
     /// its settlement counts from then (the usual convention of layered-embankment analysis,
     /// which gives the classical layered settlement s(z) = γ(H − z)z/M of a confined column).
+    /// Blocks placed by a dynamic stage count from that stage's start, so that their motion in
+    /// the quake is reported.
     #[default]
     EndOfStage,
     /// From the start of the stage that placed them (includes the settlement under the lift's
