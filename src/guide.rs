@@ -687,6 +687,16 @@
 //! | `accel_at2` | 1,000,000 | 9,395 | 990,605 | 0 | 0 | 0 | 0 | 16 | 62,112 | 476 | 87 | 3 |
 //! | `state_codec` | 1,000,000 | 63,229 | 936,771 | 0 | 0 | 0 | 0 | 24 | 41,322 | 938 | 144 | 23 |
 //!
+//! The campaign of the lock and hashed-input targets, with the scene target again after AT2
+//! records entered scenes (`TARGETS="lock_file checkpoint_inputs scene"
+//! scripts/fuzz_campaign.sh 100000`, from the kept corpus and the seeds, on 2 cores):
+//!
+//! | target | inputs | accepted | rejected | skipped | panics | aborts | time-outs | time (s) | inputs/s | edges | corpus files | corpus KiB |
+//! |---|---|---|---|---|---|---|---|---|---|---|---|---|
+//! | `lock_file` | 100,000 | 46,660 | 53,340 | 0 | 0 | 0 | 0 | 44 | 2,278 | 94 | 7 | 0 |
+//! | `checkpoint_inputs` | 100,000 | 427 | 99,573 | 0 | 0 | 0 | 0 | 12 | 8,264 | 232 | 21 | 1 |
+//! | `scene` | 100,000 | 336 | 99,658 | 6 | 0 | 0 | 0 | 78 | 1,274 | 13,934 | 300 | 61 |
+//!
 //! Inputs are libFuzzer's executions (the seeds included); accepted and rejected count what the
 //! reader returned; edges are the instrumented code edges reached (the readers and the libraries
 //! they call). Every input finished in under a second (libFuzzer's slowest unit: 0 s); the peak
