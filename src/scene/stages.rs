@@ -97,43 +97,12 @@ pub(super) fn resolve_stage(
     };
     let stage_path = format!("stages[{k}]");
     let modal = modal::resolve(st.modal.as_ref(), dynamic.as_ref(), &stage_path, inv)?;
-    if let (Some(_), Some(first)) = (modal, before.iter().position(|s: &Stage| s.modal.is_some())) {
-        return Err(inv(
-            &stage_path,
-            format!(
-                "a modal analysis runs already in stage {} '{}'; a scene runs at most one",
-                first + 1,
-                before[first].name
-            ),
-        ));
-    }
-    if (modal.is_some() || dynamic.is_some()) && placed.iter().all(Option::is_none) {
-        let what = if modal.is_some() {
-            "modal analysis"
-        } else {
-            "dynamic stage"
-        };
-        return Err(inv(
-            &stage_path,
-            format!(
-                "a {what} needs placed blocks, but no block is placed by stage '{}': list the \
-                 blocks in `activate` of this stage or of a stage before it",
-                st.name
-            ),
-        ));
-    }
-    if let (Some(_), Some(previous)) = (&dynamic, before.last().filter(|s| s.dynamic.is_some())) {
-        return Err(inv(
-            &format!("{stage_path}.dynamic"),
-            format!(
-                "a dynamic stage directly after the dynamic stage '{}' would start at rest (each \
-                 dynamic stage starts with zero velocity relative to the base) and cut its \
-                 motion off; make them one stage (a `duration` beyond the record gives a quiet \
-                 tail after it), or put a static stage between them",
-                previous.name
-            ),
-        ));
-    }
+    let kind = StageKind {
+        name: &st.name,
+        modal: modal.is_some(),
+        dynamic: dynamic.is_some(),
+    };
+    check_stage_kind(&kind, &stage_path, placed, before, inv)?;
     Ok(Stage {
         name: st.name.clone(),
         activate,
@@ -149,6 +118,64 @@ pub(super) fn resolve_stage(
         dynamic,
         modal,
     })
+}
+
+/// What [`check_stage_kind`] checks of a stage: its name and whether it runs a modal analysis
+/// and steps in time.
+struct StageKind<'a> {
+    name: &'a str,
+    modal: bool,
+    dynamic: bool,
+}
+
+/// A second modal analysis, a modal or dynamic stage before any block is placed (`placed`:
+/// the stage that placed each block so far) and a dynamic stage directly after another are
+/// errors naming `stage_path`.
+fn check_stage_kind(
+    st: &StageKind<'_>,
+    stage_path: &str,
+    placed: &[Option<usize>],
+    before: &[Stage],
+    inv: &dyn Fn(&str, String) -> SceneError,
+) -> Result<(), SceneError> {
+    if let (true, Some(first)) = (st.modal, before.iter().position(|s: &Stage| s.modal.is_some())) {
+        return Err(inv(
+            stage_path,
+            format!(
+                "a modal analysis runs already in stage {} '{}'; a scene runs at most one",
+                first + 1,
+                before[first].name
+            ),
+        ));
+    }
+    if (st.modal || st.dynamic) && placed.iter().all(Option::is_none) {
+        let what = if st.modal {
+            "modal analysis"
+        } else {
+            "dynamic stage"
+        };
+        return Err(inv(
+            stage_path,
+            format!(
+                "a {what} needs placed blocks, but no block is placed by stage '{}': list the \
+                 blocks in `activate` of this stage or of a stage before it",
+                st.name
+            ),
+        ));
+    }
+    if let (true, Some(previous)) = (st.dynamic, before.last().filter(|s| s.dynamic.is_some())) {
+        return Err(inv(
+            &format!("{stage_path}.dynamic"),
+            format!(
+                "a dynamic stage directly after the dynamic stage '{}' would start at rest (each \
+                 dynamic stage starts with zero velocity relative to the base) and cut its \
+                 motion off; make them one stage (a `duration` beyond the record gives a quiet \
+                 tail after it), or put a static stage between them",
+                previous.name
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// Appends the scene's `earthquake` as a dynamic stage after the last stage, with that

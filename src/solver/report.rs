@@ -52,7 +52,7 @@ pub struct SolveReport {
     pub stage_seconds: Vec<StageSeconds>,
     /// The crest's motion at every converged time step of every dynamic stage (recorded by
     /// the run's quake observer): `[t, u_x, u_y, u_z, a_x, a_y, a_z, ag_x, ag_y, ag_z]`, t on
-    /// the quake's clock ([`crate::post::quake_clock`]), u relative to the base and to the
+    /// the quake's clock (`post::quake_clock`), u relative to the base and to the
     /// state before the first dynamic stage (m), a absolute and a_g the ground's (m/s²). Kept
     /// in step checkpoints, so a restarted run has the whole history.
     #[serde(default)]
