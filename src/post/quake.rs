@@ -141,14 +141,10 @@ pub fn crest_history(scene: &Scene, h5: &Path) -> Result<Option<CrestHistory>, S
             before = at("displacement")?;
             continue;
         }
-        let Some((k, _, dynamic, t0)) = clock.stages(scene).find(|(_, s, _, _)| s.name == this) else {
+        let Some((dynamic, t0, local)) = crate::post::quake_fields::quake_step(&clock, scene, &g, &this)?
+        else {
             continue;
         };
-        let time: f64 = g
-            .attr("time")
-            .and_then(|a| a.read_scalar())
-            .map_err(|e| e.to_string())?;
-        let local = (time - k as f64) * dynamic.duration;
         let u = at("displacement")?;
         hist.t.push(t0 + local);
         hist.u.push(std::array::from_fn(|c| u[c] - before[c]));

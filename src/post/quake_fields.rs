@@ -5,6 +5,7 @@
 use crate::io::results_reader::{open, stage_name, step_names};
 use crate::post::profiles::StageFields;
 use crate::post::quake_clock::QuakeClock;
+use crate::scene::dynamic::DynamicStage;
 use crate::scene::Scene;
 use std::path::PathBuf;
 
@@ -91,14 +92,10 @@ pub fn read_quake_fields(scene: &Scene, h5s: &[PathBuf]) -> Result<Option<QuakeF
                 before = Some(StageFields::read(&g, h5, this)?);
                 continue;
             }
-            let Some((k, _, d, t0)) = clock.stages(scene).find(|(_, s, _, _)| s.name == this) else {
+            let Some((d, t0, local)) = quake_step(&clock, scene, &g, &this)? else {
                 continue;
             };
-            let time: f64 = g
-                .attr("time")
-                .and_then(|a| a.read_scalar())
-                .map_err(|e| e.to_string())?;
-            let t = t0 + on_time_grid((time - k as f64) * d.duration, d.dt());
+            let t = t0 + on_time_grid(local, d.dt());
             while q.t.last().is_some_and(|&last| last >= t) {
                 q.t.pop();
                 q.steps.pop();
@@ -112,6 +109,24 @@ pub fn read_quake_fields(scene: &Scene, h5s: &[PathBuf]) -> Result<Option<QuakeF
     };
     q.before = before;
     Ok((!q.steps.is_empty()).then_some(q))
+}
+
+/// The dynamic stage of the results step `g` of stage `stage` with its start on the quake's
+/// clock and the step's time in the stage (s); `None` for a step of a static stage.
+pub(crate) fn quake_step<'s>(
+    clock: &'s QuakeClock,
+    scene: &'s Scene,
+    g: &hdf5::Group,
+    stage: &str,
+) -> Result<Option<(&'s DynamicStage, f64, f64)>, String> {
+    let Some((k, _, d, t0)) = clock.stages(scene).find(|(_, s, _, _)| s.name == stage) else {
+        return Ok(None);
+    };
+    let time: f64 = g
+        .attr("time")
+        .and_then(|a| a.read_scalar())
+        .map_err(|e| e.to_string())?;
+    Ok(Some((d, t0, (time - k as f64) * d.duration)))
 }
 
 /// "stage" for one stage name, "stages" for names joined by ", " ([`QuakeClock::names`]).

@@ -165,13 +165,7 @@ impl<'a> Problem<'a> {
     pub fn node_motion(&self, node: usize, t: f64) -> Result<[f64; 10], SolveError> {
         let mut row = [0.0; 10];
         let rates = self.integrator.rates()?;
-        let owned = self
-            .model
-            .disc
-            .owned_nodes
-            .iter()
-            .position(|&n| n as usize == node);
-        if let (Some(i), Some(r)) = (owned, &rates) {
+        if let (Some(i), Some(r)) = (self.owned_index(node), &rates) {
             let u = self
                 .model
                 .u_committed
@@ -193,17 +187,20 @@ impl<'a> Problem<'a> {
     /// The displacement (m) of node `node` (mesh index) at the start of the current stage,
     /// relative to the base. Collective.
     pub fn node_stage_start(&self, node: usize) -> [f64; 3] {
-        let owned = self
-            .model
-            .disc
-            .owned_nodes
-            .iter()
-            .position(|&n| n as usize == node);
-        let local = owned.map_or([0.0; 3], |i| {
+        let local = self.owned_index(node).map_or([0.0; 3], |i| {
             std::array::from_fn(|c| self.u_stage_start[3 * i + c])
         });
         // one rank holds the node: the sums add zeros to its values, exactly
         local.map(|v| crate::parallel::sum_f64(self.comm, v))
+    }
+
+    /// The index among this rank's owned nodes of node `node` (mesh index), if it owns it.
+    fn owned_index(&self, node: usize) -> Option<usize> {
+        self.model
+            .disc
+            .owned_nodes
+            .iter()
+            .position(|&n| n as usize == node)
     }
 
     /// Whether the current stage steps in load (static) or in time (dynamic).
